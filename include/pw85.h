@@ -1,0 +1,158 @@
+/*
+ * pw85.h - public C API of libpw85.
+ *
+ * libpw85 computes the Perram-Wertheim contact function of two ellipsoids
+ * (J. Comp. Phys. 58(3), 409-416, 1985): the square mu^2 of the common
+ * factor by which two ellipsoids, their centres fixed, must be scaled to be
+ * externally tangent. mu^2 < 1: the ellipsoids overlap; mu^2 = 1: they touch;
+ * mu^2 > 1: they are apart.
+ *
+ * The functions of pw85 1.0 keep their names, signatures and storage
+ * conventions, so that programs written for pw85 1.0 compile and link
+ * unchanged. New functions return a status code (PW85_OK or a negative
+ * PW85_ERR_* value, see pw85_strerror()).
+ *
+ * Storage conventions:
+ *  - a vector is a double[3] of its Cartesian coordinates;
+ *  - a symmetric 3x3 matrix A is a double[6] a holding its upper triangle in
+ *    row-major order: a = {A00, A01, A02, A11, A12, A22};
+ *  - an ellipsoid of centre c is {m : (m - c)^T Q^{-1} (m - c) <= 1}, Q
+ *    symmetric positive definite, Q = sum_i a_i^2 v_i v_i^T (semi-axes a_i,
+ *    unit axes v_i).
+ *
+ * All functions are reentrant and thread-safe: the library has no global
+ * mutable state, never prints, never aborts, and never changes GSL's
+ * process-wide error handler.
+ */
+#ifndef PW85_H
+#define PW85_H
+
+#if defined(_WIN32) && !defined(__GNUC__)
+#  ifdef PW85_BUILDING
+#    define PW85_API __declspec(dllexport)
+#  else
+#    define PW85_API __declspec(dllimport)
+#  endif
+#elif defined(__GNUC__)
+#  define PW85_API __attribute__((visibility("default")))
+#else
+#  define PW85_API
+#endif
+
+#ifdef __cplusplus
+#  define PW85_BEGIN_DECLS extern "C" {
+#  define PW85_END_DECLS }
+#else
+#  define PW85_BEGIN_DECLS
+#  define PW85_END_DECLS
+#endif
+
+/* Version of this header; the build reads it from here. */
+#define PW85_VERSION_MAJOR 2
+#define PW85_VERSION_MINOR 0
+#define PW85_VERSION_PATCH 0
+#define PW85_VERSION "2.0.0"
+
+/* Dimension of the physical space. */
+#define PW85_DIM 3
+/* Dimension of the space of symmetric 3x3 matrices. */
+#define PW85_SYM 6
+
+/* Absolute tolerance on lambda of the Brent iterations of
+ * pw85_contact_function(). */
+#define PW85_LAMBDA_ATOL 1e-6
+/* Maximum number of Brent iterations of pw85_contact_function(). */
+#define PW85_MAX_ITER 25
+/* Number of Newton-Raphson refinement steps of pw85_contact_function(). */
+#define PW85_NR_ITER 3
+
+/* Status codes. Negative values are errors; the values are pinned (ABI). */
+#define PW85_OK 0
+/* A pointer argument is NULL or a value is NaN or infinite. */
+#define PW85_ERR_INVALID_ARGUMENT (-1)
+/* A matrix is not symmetric positive definite (or a radius is not > 0). */
+#define PW85_ERR_NOT_SPD (-2)
+/* An iteration did not converge; the best estimate is still written. */
+#define PW85_ERR_NO_CONVERGENCE (-3)
+/* Axes passed to pw85_ellipsoid() are not orthonormal to 1e-10. */
+#define PW85_ERR_NOT_ORTHONORMAL (-4)
+
+PW85_BEGIN_DECLS
+
+/* Returns the version string of the library actually loaded (compare with
+ * PW85_VERSION, the version of the header compiled against). */
+PW85_API const char *pw85_version(void);
+
+/* Returns a static, human-readable description of a status code. Never NULL;
+ * unknown codes give "unknown status". */
+PW85_API const char *pw85_strerror(int status);
+
+/* Cholesky decomposition A = L L^T of a symmetric positive definite matrix a.
+ * The lower-triangular L is stored in l as
+ *     L = [l[0]  0     0   ]
+ *         [l[1]  l[3]  0   ]
+ *         [l[2]  l[4]  l[5]].
+ * If A is not positive definite (or holds NaN), all six entries of l are set
+ * to NaN. NULL pointers: nothing is written. (pw85 1.0 signature.) */
+PW85_API void pw85__cholesky_decomp(double const a[PW85_SYM],
+                                    double l[PW85_SYM]);
+
+/* Solves L L^T x = b by forward and backward substitution, l as returned by
+ * pw85__cholesky_decomp(). NULL pointers: nothing is written.
+ * (pw85 1.0 signature.) */
+PW85_API void pw85__cholesky_solve(double const l[PW85_SYM],
+                                   double const b[PW85_DIM],
+                                   double x[PW85_DIM]);
+
+/* Quadratic form of a spheroid of equatorial radius a, polar radius c and
+ * unit axis of revolution n: Q = a^2 I + (c^2 - a^2) n n^T. The caller is
+ * responsible for |n| = 1. Bad input (a or c not > 0, NaN or infinite
+ * values, n = 0): q is filled with NaN. (pw85 1.0 signature.) */
+PW85_API void pw85_spheroid(double a, double c, double const n[PW85_DIM],
+                            double q[PW85_SYM]);
+
+/* Quadratic form of a general ellipsoid: Q = sum_i radii[i]^2 v_i v_i^T where
+ * v_i = (axes[3i], axes[3i+1], axes[3i+2]) is the i-th row of axes.
+ * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL pointer, NaN or infinite
+ * values), PW85_ERR_NOT_SPD (a radius <= 0) or PW85_ERR_NOT_ORTHONORMAL
+ * (|axes axes^T - I| > 1e-10 entrywise). On error q is filled with NaN (when
+ * q is not NULL). */
+PW85_API int pw85_ellipsoid(double const radii[PW85_DIM],
+                            double const axes[PW85_DIM * PW85_DIM],
+                            double q[PW85_SYM]);
+
+/* Returns -f(lambda), where
+ *     f(lambda) = lambda (1 - lambda) r12^T Q^{-1} r12,
+ *     Q = (1 - lambda) Q1 + lambda Q2,
+ * evaluated through a Cholesky decomposition of Q. params holds r12, q1 and
+ * q2 one after the other (15 doubles). The signature matches gsl_function.
+ * Returns NaN for NULL params, non-finite values or a Q that is not positive
+ * definite. (pw85 1.0 signature.) */
+PW85_API double pw85_f_neg(double lambda, double const *params);
+
+/* Residual g(lambda) = mu2^2 - mu1^2 of the Newton refinement (pw85 1.0
+ * documentation, chapter 5, eqs. (4)-(5)). Writes
+ *     out[0] = f(lambda), out[1] = g(lambda), out[2] = g'(lambda).
+ * Bad input: out is filled with NaN. (pw85 1.0 signature.) */
+PW85_API void pw85__residual(double lambda, double const r12[PW85_DIM],
+                             double const q1[PW85_SYM],
+                             double const q2[PW85_SYM], double out[3]);
+
+/* Contact function of two ellipsoids, by pw85 1.0's algorithm: Brent's
+ * minimisation of -f over [0, 1] (GSL), then PW85_NR_ITER Newton steps on
+ * the residual g, keeping whichever estimate has the smaller |g|.
+ *     out[0] = mu^2,  out[1] = lambda (the maximiser of f).
+ * r12 = c2 - c1 joins the centres; q1, q2 are the quadratic forms.
+ * r12 = 0 gives mu^2 = 0 and lambda = 0.5 with PW85_OK.
+ * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity),
+ * PW85_ERR_NOT_SPD (q1 or q2 not positive definite) or
+ * PW85_ERR_NO_CONVERGENCE (Brent did not reach PW85_LAMBDA_ATOL in
+ * PW85_MAX_ITER iterations; the estimate is still written). On the first two
+ * errors out is filled with NaN (when out is not NULL). */
+PW85_API int pw85_contact_function(double const r12[PW85_DIM],
+                                   double const q1[PW85_SYM],
+                                   double const q2[PW85_SYM], double out[2]);
+
+PW85_END_DECLS
+
+#endif /* PW85_H */

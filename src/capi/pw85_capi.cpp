@@ -1,0 +1,135 @@
+// The extern "C" layer of libpw85: validate every argument, call the C++
+// core, turn the outcome into a status code. No logic of its own lives here.
+// The core is compiled without exceptions, so none can cross this boundary.
+#include <cmath>
+
+#include "pw85.h"
+#include "../core/contact.hpp"
+#include "../core/ellipsoid.hpp"
+#include "../core/f_cholesky.hpp"
+#include "../core/status.hpp"
+#include "../core/sym3.hpp"
+#include "validate.hpp"
+
+static_assert(pw85::kOk == PW85_OK, "status codes must match pw85.h");
+static_assert(pw85::kInvalidArgument == PW85_ERR_INVALID_ARGUMENT, "");
+static_assert(pw85::kNotSpd == PW85_ERR_NOT_SPD, "");
+static_assert(pw85::kNoConvergence == PW85_ERR_NO_CONVERGENCE, "");
+static_assert(pw85::kNotOrthonormal == PW85_ERR_NOT_ORTHONORMAL, "");
+static_assert(pw85::kDim == PW85_DIM && pw85::kSym == PW85_SYM, "");
+
+using pw85::capi::fill_nan;
+
+extern "C" {
+
+const char *pw85_version(void) { return PW85_VERSION; }
+
+const char *pw85_strerror(int status) {
+  switch (status) {
+    case PW85_OK:
+      return "success";
+    case PW85_ERR_INVALID_ARGUMENT:
+      return "invalid argument (NULL pointer, NaN or infinite value)";
+    case PW85_ERR_NOT_SPD:
+      return "matrix not symmetric positive definite (or radius not > 0)";
+    case PW85_ERR_NO_CONVERGENCE:
+      return "iteration did not converge to the requested accuracy";
+    case PW85_ERR_NOT_ORTHONORMAL:
+      return "axes are not orthonormal";
+    default:
+      return "unknown status";
+  }
+}
+
+void pw85__cholesky_decomp(double const a[PW85_SYM], double l[PW85_SYM]) {
+  if (a == nullptr || l == nullptr) return;
+  pw85::Sym3 factor;
+  if (!pw85::cholesky(pw85::load_sym3(a), factor)) {
+    fill_nan(l, PW85_SYM);
+    return;
+  }
+  for (int i = 0; i < PW85_SYM; ++i) l[i] = factor[i];
+}
+
+void pw85__cholesky_solve(double const l[PW85_SYM], double const b[PW85_DIM],
+                          double x[PW85_DIM]) {
+  if (l == nullptr || b == nullptr || x == nullptr) return;
+  pw85::Vec3 const s = pw85::cholesky_solve(pw85::load_sym3(l), pw85::load_vec3(b));
+  for (int i = 0; i < PW85_DIM; ++i) x[i] = s[i];
+}
+
+void pw85_spheroid(double a, double c, double const n[PW85_DIM], double q[PW85_SYM]) {
+  if (q == nullptr) return;
+  if (n == nullptr || !(a > 0.0) || !(c > 0.0) || !std::isfinite(a) ||
+      !std::isfinite(c) || !pw85::all_finite(n, PW85_DIM) ||
+      (n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0)) {
+    fill_nan(q, PW85_SYM);
+    return;
+  }
+  pw85::Sym3 const s = pw85::spheroid(a, c, pw85::load_vec3(n));
+  for (int i = 0; i < PW85_SYM; ++i) q[i] = s[i];
+}
+
+int pw85_ellipsoid(double const radii[PW85_DIM], double const axes[PW85_DIM * PW85_DIM],
+                   double q[PW85_SYM]) {
+  if (q == nullptr) return PW85_ERR_INVALID_ARGUMENT;
+  if (radii == nullptr || axes == nullptr || !pw85::all_finite(radii, PW85_DIM) ||
+      !pw85::all_finite(axes, PW85_DIM * PW85_DIM)) {
+    fill_nan(q, PW85_SYM);
+    return PW85_ERR_INVALID_ARGUMENT;
+  }
+  pw85::Sym3 s;
+  int const status = pw85::ellipsoid(pw85::load_vec3(radii), axes, 1e-10, s);
+  if (status != PW85_OK) {
+    fill_nan(q, PW85_SYM);
+    return status;
+  }
+  for (int i = 0; i < PW85_SYM; ++i) q[i] = s[i];
+  return PW85_OK;
+}
+
+double pw85_f_neg(double lambda, double const *params) {
+  if (params == nullptr || !std::isfinite(lambda) ||
+      !pw85::all_finite(params, PW85_DIM + 2 * PW85_SYM))
+    return std::nan("");
+  double f;
+  if (!pw85::f_cholesky(lambda, pw85::load_vec3(params), pw85::load_sym3(params + 3),
+                        pw85::load_sym3(params + 9), f))
+    return std::nan("");
+  return -f;
+}
+
+void pw85__residual(double lambda, double const r12[PW85_DIM], double const q1[PW85_SYM],
+                    double const q2[PW85_SYM], double out[3]) {
+  if (out == nullptr) return;
+  pw85::Residual res;
+  if (r12 == nullptr || q1 == nullptr || q2 == nullptr || !std::isfinite(lambda) ||
+      !pw85::all_finite(r12, PW85_DIM) || !pw85::all_finite(q1, PW85_SYM) ||
+      !pw85::all_finite(q2, PW85_SYM) ||
+      !pw85::residual_cholesky(lambda, pw85::load_vec3(r12), pw85::load_sym3(q1),
+                               pw85::load_sym3(q2), res)) {
+    fill_nan(out, 3);
+    return;
+  }
+  out[0] = res.f;
+  out[1] = res.g;
+  out[2] = res.dg;
+}
+
+int pw85_contact_function(double const r12[PW85_DIM], double const q1[PW85_SYM],
+                          double const q2[PW85_SYM], double out[2]) {
+  int const status = pw85::capi::validate_pair(r12, q1, q2);
+  if (out == nullptr) return PW85_ERR_INVALID_ARGUMENT;
+  if (status != PW85_OK) {
+    fill_nan(out, 2);
+    return status;
+  }
+  pw85::ContactResult res;
+  int const s = pw85::contact_brent(pw85::load_vec3(r12), pw85::load_sym3(q1),
+                                    pw85::load_sym3(q2), res);
+  out[0] = res.mu2;
+  out[1] = res.lambda;
+  return s;
+}
+
+}  // extern "C"

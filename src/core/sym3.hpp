@@ -1,0 +1,101 @@
+// Symmetric 3x3 algebra on the pw85 storage: a symmetric matrix is six
+// doubles, the upper triangle in row-major order {A00, A01, A02, A11, A12, A22}
+// (pw85 1.0 documentation, section 3.1, eq. (3)). Everything is inline,
+// allocation-free and noexcept: these are the building blocks of every method.
+#pragma once
+
+#include <cmath>
+
+namespace pw85 {
+
+constexpr int kDim = 3;
+constexpr int kSym = 6;
+
+struct Vec3 {
+  double x[kDim];
+  constexpr double operator[](int i) const noexcept { return x[i]; }
+  constexpr double &operator[](int i) noexcept { return x[i]; }
+};
+
+struct Sym3 {
+  double a[kSym];
+  constexpr double operator[](int i) const noexcept { return a[i]; }
+  constexpr double &operator[](int i) noexcept { return a[i]; }
+};
+
+inline Vec3 load_vec3(double const *p) noexcept { return Vec3{{p[0], p[1], p[2]}}; }
+
+inline Sym3 load_sym3(double const *p) noexcept {
+  return Sym3{{p[0], p[1], p[2], p[3], p[4], p[5]}};
+}
+
+inline double dot(Vec3 const &u, Vec3 const &v) noexcept {
+  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+}
+
+// (1 - lambda) q1 + lambda q2, eq. (10) of the pw85 theory chapter; the
+// same expression, in the same order, as pw85 1.0 so results match bitwise.
+inline Sym3 interpolate(Sym3 const &q1, Sym3 const &q2, double lambda) noexcept {
+  Sym3 q;
+  double const one_minus = 1.0 - lambda;
+  for (int i = 0; i < kSym; ++i) q[i] = one_minus * q1[i] + lambda * q2[i];
+  return q;
+}
+
+inline Sym3 difference(Sym3 const &q2, Sym3 const &q1) noexcept {
+  Sym3 d;
+  for (int i = 0; i < kSym; ++i) d[i] = q2[i] - q1[i];
+  return d;
+}
+
+// y = A x.
+inline Vec3 multiply(Sym3 const &a, Vec3 const &x) noexcept {
+  return Vec3{{a[0] * x[0] + a[1] * x[1] + a[2] * x[2],
+               a[1] * x[0] + a[3] * x[1] + a[4] * x[2],
+               a[2] * x[0] + a[4] * x[1] + a[5] * x[2]}};
+}
+
+// Cholesky factor A = L L^T, L lower triangular stored as
+// {L00, L10, L20, L11, L21, L22}. Returns false, with L undefined, when a
+// pivot is not strictly positive (A not positive definite, or NaN).
+inline bool cholesky(Sym3 const &a, Sym3 &l) noexcept {
+  double const p0 = a[0];
+  if (!(p0 > 0.0)) return false;
+  l[0] = std::sqrt(p0);
+  l[1] = a[1] / l[0];
+  l[2] = a[2] / l[0];
+  double const p1 = a[3] - l[1] * l[1];
+  if (!(p1 > 0.0)) return false;
+  l[3] = std::sqrt(p1);
+  l[4] = (a[4] - l[1] * l[2]) / l[3];
+  double const p2 = a[5] - l[2] * l[2] - l[4] * l[4];
+  if (!(p2 > 0.0)) return false;
+  l[5] = std::sqrt(p2);
+  return std::isfinite(l[1]) && std::isfinite(l[2]) && std::isfinite(l[4]) &&
+         std::isfinite(l[5]);
+}
+
+// Solves L L^T x = b: forward substitution L y = b, backward L^T x = y.
+inline Vec3 cholesky_solve(Sym3 const &l, Vec3 const &b) noexcept {
+  double const y0 = b[0] / l[0];
+  double const y1 = (b[1] - l[1] * y0) / l[3];
+  double const y2 = (b[2] - l[2] * y0 - l[4] * y1) / l[5];
+  Vec3 x;
+  x[2] = y2 / l[5];
+  x[1] = (y1 - l[4] * x[2]) / l[3];
+  x[0] = (y0 - l[1] * x[1] - l[2] * x[2]) / l[0];
+  return x;
+}
+
+inline bool all_finite(double const *p, int n) noexcept {
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(p[i])) return false;
+  return true;
+}
+
+inline bool is_positive_definite(Sym3 const &a) noexcept {
+  Sym3 l;
+  return cholesky(a, l);
+}
+
+}  // namespace pw85
