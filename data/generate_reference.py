@@ -270,7 +270,7 @@ def contact(q1, q2, r):
             if hi - lo <= 2:
                 break
             d = evd(K)
-            step = mpz(gmpy2.rint_round(mpq(v, d))) if d != 0 else mpz(0)
+            step = (2 * v + d) // (2 * d) if d != 0 else mpz(0)
             if abs(step) <= 1:
                 for cand in (K - 1, K + 1):
                     w = ev(cand)
@@ -626,7 +626,6 @@ def main():
 
     t_start = time.time()
     rng = np.random.default_rng(args.seed)
-    pool = multiprocessing.Pool(args.workers)
     print("generate_reference.py: seed=%d workers=%d output=%s"
           % (args.seed, args.workers, args.output), file=sys.stderr)
 
@@ -649,7 +648,6 @@ def main():
 
     ns = len(spheroids)
     F = np.empty((ns, ns, len(directions), len(lambdas)))
-    pool.close()
     fpool = multiprocessing.Pool(args.workers, initializer=_f_init,
                                  initargs=(spheroids.tolist(), directions.tolist(),
                                            lambdas.tolist()))

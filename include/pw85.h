@@ -76,6 +76,11 @@
 #define PW85_ERR_NO_CONVERGENCE (-3)
 /* Axes passed to pw85_ellipsoid() are not orthonormal to 1e-10. */
 #define PW85_ERR_NOT_ORTHONORMAL (-4)
+/* The method argument names no method of this function. */
+#define PW85_ERR_UNKNOWN_METHOD (-5)
+/* A result was computed (and written) but its error estimate exceeds the
+ * accuracy the method documents. */
+#define PW85_ERR_INACCURATE (-6)
 
 PW85_BEGIN_DECLS
 

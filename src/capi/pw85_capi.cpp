@@ -16,6 +16,8 @@ static_assert(pw85::kInvalidArgument == PW85_ERR_INVALID_ARGUMENT, "");
 static_assert(pw85::kNotSpd == PW85_ERR_NOT_SPD, "");
 static_assert(pw85::kNoConvergence == PW85_ERR_NO_CONVERGENCE, "");
 static_assert(pw85::kNotOrthonormal == PW85_ERR_NOT_ORTHONORMAL, "");
+static_assert(pw85::kUnknownMethod == PW85_ERR_UNKNOWN_METHOD, "");
+static_assert(pw85::kInaccurate == PW85_ERR_INACCURATE, "");
 static_assert(pw85::kDim == PW85_DIM && pw85::kSym == PW85_SYM, "");
 
 using pw85::capi::fill_nan;
@@ -36,6 +38,10 @@ const char *pw85_strerror(int status) {
       return "iteration did not converge to the requested accuracy";
     case PW85_ERR_NOT_ORTHONORMAL:
       return "axes are not orthonormal";
+    case PW85_ERR_UNKNOWN_METHOD:
+      return "unknown method";
+    case PW85_ERR_INACCURATE:
+      return "result less accurate than the method documents";
     default:
       return "unknown status";
   }

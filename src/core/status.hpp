@@ -10,6 +10,8 @@ enum Status : int {
   kNotSpd = -2,
   kNoConvergence = -3,
   kNotOrthonormal = -4,
+  kUnknownMethod = -5,
+  kInaccurate = -6,
 };
 
 }  // namespace pw85
