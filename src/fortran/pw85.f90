@@ -1,0 +1,162 @@
+! pw85.f90 - Fortran 2003 bindings of libpw85 (see include/pw85.h).
+!
+! module pw85 declares, through iso_c_binding, the constants and the
+! bind(C) interfaces of the public C functions of pw85.h, with the same names.
+! Storage conventions are those of the C API:
+!  - a vector is a real(c_double) array of dimension 3 (PW85_DIM);
+!  - a symmetric 3x3 matrix is a real(c_double) array of dimension 6
+!    (PW85_SYM) holding its upper triangle row by row:
+!    (A11, A12, A13, A22, A23, A33);
+!  - the axes of pw85_ellipsoid() are a real(c_double) array axes(3, 3)
+!    whose column j is the j-th unit axis (the C row-major rows, read in
+!    Fortran column-major order).
+! Status codes are integer(c_int): PW85_OK or a negative PW85_ERR_* value.
+!
+! The two functions returning const char* in C (pw85_version, pw85_strerror)
+! return type(c_ptr) here; the module procedures pw85_version_string() and
+! pw85_strerror_string(status) return them as Fortran strings.
+!
+! Using the convenience wrappers requires linking their object code
+! (libpw85_fortran.a is installed next to libpw85); programs calling only the
+! bind(C) interfaces need just libpw85.
+module pw85
+  use iso_c_binding
+  implicit none
+
+  private :: c_strlen, fortran_string
+
+  ! Mirrors of the macros of pw85.h.
+  character(len=*), parameter :: PW85_VERSION_HEADER = "2.0.0"
+  integer(c_int), parameter :: PW85_DIM = 3
+  integer(c_int), parameter :: PW85_SYM = 6
+  real(c_double), parameter :: PW85_LAMBDA_ATOL = 1.0e-6_c_double
+  integer(c_int), parameter :: PW85_MAX_ITER = 25
+  integer(c_int), parameter :: PW85_NR_ITER = 3
+
+  integer(c_int), parameter :: PW85_OK = 0
+  integer(c_int), parameter :: PW85_ERR_INVALID_ARGUMENT = -1
+  integer(c_int), parameter :: PW85_ERR_NOT_SPD = -2
+  integer(c_int), parameter :: PW85_ERR_NO_CONVERGENCE = -3
+  integer(c_int), parameter :: PW85_ERR_NOT_ORTHONORMAL = -4
+  integer(c_int), parameter :: PW85_ERR_UNKNOWN_METHOD = -5
+  integer(c_int), parameter :: PW85_ERR_INACCURATE = -6
+
+  interface
+    ! size_t strlen(const char *s) of the C library.
+    function c_strlen(s) bind(C, name="strlen") result(n)
+      import :: c_ptr, c_size_t
+      type(c_ptr), value :: s
+      integer(c_size_t) :: n
+    end function c_strlen
+
+    ! const char *pw85_version(void)
+    function pw85_version() bind(C, name="pw85_version") result(p)
+      import :: c_ptr
+      type(c_ptr) :: p
+    end function pw85_version
+
+    ! const char *pw85_strerror(int status)
+    function pw85_strerror(status) bind(C, name="pw85_strerror") result(p)
+      import :: c_ptr, c_int
+      integer(c_int), value :: status
+      type(c_ptr) :: p
+    end function pw85_strerror
+
+    ! void pw85__cholesky_decomp(double const a[6], double l[6])
+    subroutine pw85__cholesky_decomp(a, l) bind(C, name="pw85__cholesky_decomp")
+      import :: c_double
+      real(c_double), intent(in) :: a(6)
+      real(c_double), intent(out) :: l(6)
+    end subroutine pw85__cholesky_decomp
+
+    ! void pw85__cholesky_solve(double const l[6], double const b[3], double x[3])
+    subroutine pw85__cholesky_solve(l, b, x) bind(C, name="pw85__cholesky_solve")
+      import :: c_double
+      real(c_double), intent(in) :: l(6), b(3)
+      real(c_double), intent(out) :: x(3)
+    end subroutine pw85__cholesky_solve
+
+    ! void pw85_spheroid(double a, double c, double const n[3], double q[6])
+    subroutine pw85_spheroid(a, c, n, q) bind(C, name="pw85_spheroid")
+      import :: c_double
+      real(c_double), value :: a, c
+      real(c_double), intent(in) :: n(3)
+      real(c_double), intent(out) :: q(6)
+    end subroutine pw85_spheroid
+
+    ! int pw85_ellipsoid(double const radii[3], double const axes[9], double q[6])
+    ! axes(:, j) is the j-th unit axis.
+    function pw85_ellipsoid(radii, axes, q) bind(C, name="pw85_ellipsoid") result(status)
+      import :: c_double, c_int
+      real(c_double), intent(in) :: radii(3), axes(3, 3)
+      real(c_double), intent(out) :: q(6)
+      integer(c_int) :: status
+    end function pw85_ellipsoid
+
+    ! double pw85_f_neg(double lambda, double const *params), params = r12, q1, q2
+    function pw85_f_neg(lambda, params) bind(C, name="pw85_f_neg") result(f)
+      import :: c_double
+      real(c_double), value :: lambda
+      real(c_double), intent(in) :: params(15)
+      real(c_double) :: f
+    end function pw85_f_neg
+
+    ! void pw85__residual(double lambda, double const r12[3], double const q1[6],
+    !                     double const q2[6], double out[3])
+    subroutine pw85__residual(lambda, r12, q1, q2, out) bind(C, name="pw85__residual")
+      import :: c_double
+      real(c_double), value :: lambda
+      real(c_double), intent(in) :: r12(3), q1(6), q2(6)
+      real(c_double), intent(out) :: out(3)
+    end subroutine pw85__residual
+
+    ! int pw85_contact_function(double const r12[3], double const q1[6],
+    !                           double const q2[6], double out[2])
+    ! out(1) = mu^2, out(2) = lambda.
+    function pw85_contact_function(r12, q1, q2, out) &
+        bind(C, name="pw85_contact_function") result(status)
+      import :: c_double, c_int
+      real(c_double), intent(in) :: r12(3), q1(6), q2(6)
+      real(c_double), intent(out) :: out(2)
+      integer(c_int) :: status
+    end function pw85_contact_function
+
+    ! -- interfaces added by later features go below --
+  end interface
+
+contains
+
+  ! Copies the NUL-terminated C string p into an allocatable Fortran string
+  ! (empty for a NULL pointer).
+  function fortran_string(p) result(s)
+    type(c_ptr), intent(in) :: p
+    character(len=:), allocatable :: s
+    character(kind=c_char), pointer :: chars(:)
+    integer :: i, n
+
+    if (.not. c_associated(p)) then
+      s = ""
+      return
+    end if
+    n = int(c_strlen(p))
+    call c_f_pointer(p, chars, [n])
+    allocate(character(len=n) :: s)
+    do i = 1, n
+      s(i:i) = chars(i)
+    end do
+  end function fortran_string
+
+  ! Version string of the library actually loaded (pw85_version()).
+  function pw85_version_string() result(s)
+    character(len=:), allocatable :: s
+    s = fortran_string(pw85_version())
+  end function pw85_version_string
+
+  ! Description of a status code (pw85_strerror()).
+  function pw85_strerror_string(status) result(s)
+    integer(c_int), intent(in) :: status
+    character(len=:), allocatable :: s
+    s = fortran_string(pw85_strerror(status))
+  end function pw85_strerror_string
+
+end module pw85

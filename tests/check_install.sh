@@ -1,0 +1,91 @@
+#!/bin/sh
+# Install test: stage `meson install` into a temporary directory, then build
+# the documented examples against the staged files only, the way a user
+# would (pkg-config for C, the installed pw85.mod for Fortran), run them and
+# check what they print. Leaves nothing behind.
+#
+# usage: check_install.sh BUILDDIR SRCDIR PREFIX LIBDIR INCLUDEDIR SANITIZE CC [FC]
+#   LIBDIR, INCLUDEDIR: as get_option() gives them (relative to PREFIX or
+#   absolute); SANITIZE: get_option('b_sanitize') (the staged library of a
+#   sanitizer build needs the examples linked with the same runtime);
+#   FC: Fortran compiler, empty or absent to skip the Fortran example.
+set -eu
+
+builddir=$1 srcdir=$2 prefix=$3 libdir=$4 includedir=$5 sanitize=$6 cc=$7
+fc=${8:-}
+
+case $libdir in /*) ;; *) libdir=$prefix/$libdir ;; esac
+case $includedir in /*) ;; *) includedir=$prefix/$includedir ;; esac
+
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/pw85-install-test.XXXXXX")
+trap 'rm -rf "$tmp"' EXIT INT TERM
+stage=$tmp/stage
+
+"${MESON:-meson}" install -C "$builddir" --destdir "$stage" --no-rebuild --quiet >"$tmp/install.log" 2>&1 || {
+  cat "$tmp/install.log"
+  echo "FAIL: meson install --destdir failed"
+  exit 1
+}
+
+san_flags=
+if [ "$sanitize" != none ]; then
+  san_flags="-fsanitize=$sanitize"
+fi
+
+status=0
+expect() {  # expect FILE LINE: FILE must hold LINE as a whole line.
+  if grep -qxF -- "$2" "$1"; then
+    echo "ok - $(basename "$1"): '$2'"
+  else
+    echo "FAIL: $(basename "$1") lacks the line '$2'"
+    status=1
+  fi
+}
+
+for f in "$stage$includedir/pw85.h" "$stage$libdir/pkgconfig/pw85.pc"; do
+  [ -f "$f" ] || { echo "FAIL: $f was not installed"; exit 1; }
+done
+
+# C: the tutorial, compiled with the flags of the staged pw85.pc, its prefix
+# redirected to the staging directory.
+flags=$(PKG_CONFIG_PATH="$stage$libdir/pkgconfig" \
+  pkg-config --define-variable=prefix="$stage$prefix" --cflags --libs pw85)
+echo "pkg-config --cflags --libs pw85: $flags"
+case $flags in
+  *"$stage"*) ;;
+  *) echo "FAIL: the pkg-config flags do not point into the staging directory"
+     exit 1 ;;
+esac
+# shellcheck disable=SC2086
+"$cc" $san_flags "$srcdir/docs/examples/tutorial.c" $flags -o "$tmp/tutorial"
+if command -v ldd >/dev/null 2>&1; then
+  resolved=$(LD_LIBRARY_PATH="$stage$libdir" ldd "$tmp/tutorial" | grep 'libpw85\.so' || true)
+  echo "resolved: $resolved"
+  case $resolved in
+    *"$stage"*) ;;
+    *) echo "FAIL: the tutorial does not load the staged libpw85"; exit 1 ;;
+  esac
+fi
+LD_LIBRARY_PATH="$stage$libdir" "$tmp/tutorial" >"$tmp/tutorial.out"
+cat "$tmp/tutorial.out"
+expect "$tmp/tutorial.out" "mu^2 = 3.36271"
+expect "$tmp/tutorial.out" "lambda = 0.166859"
+
+# Fortran: the example against the installed pw85.mod and libpw85_fortran.a.
+if [ -n "$fc" ]; then
+  for f in "$stage$includedir/pw85.mod" "$stage$libdir/libpw85_fortran.a"; do
+    [ -f "$f" ] || { echo "FAIL: $f was not installed"; exit 1; }
+  done
+  # shellcheck disable=SC2086
+  (cd "$tmp" && "$fc" $san_flags -I"$stage$includedir" \
+     "$srcdir/docs/examples/example.f90" \
+     -L"$stage$libdir" -lpw85_fortran -lpw85 -o "$tmp/example_f")
+  LD_LIBRARY_PATH="$stage$libdir" "$tmp/example_f" >"$tmp/example_f.out"
+  cat "$tmp/example_f.out"
+  expect "$tmp/example_f.out" "mu^2 = 3.36271"
+  expect "$tmp/example_f.out" "lambda = 0.166859"
+else
+  echo "# no Fortran compiler: Fortran example skipped"
+fi
+
+exit $status

@@ -1,0 +1,105 @@
+! test_fortran.f90 - the Fortran bindings (module pw85) against the C library.
+!
+! Reference values: mu^2 and lambda of the two spheroids of the pw85 1.0
+! tutorial, as published by pw85 1.0 (independent of this implementation):
+!   mu^2 = 3.362706040638343, lambda = 0.1668589553405904.
+! Prints TAP; error stop (non-zero exit) on any failure.
+program test_fortran
+  use, intrinsic :: iso_c_binding
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
+  use pw85
+  implicit none
+
+  real(c_double), parameter :: MU2_REF = 3.362706040638343_c_double
+  real(c_double), parameter :: LAMBDA_REF = 0.1668589553405904_c_double
+  real(c_double), parameter :: RTOL = 1.0e-12_c_double
+
+  real(c_double) :: x1(3), x2(3), n1(3), n2(3), r12(3)
+  real(c_double) :: q1(6), q2(6), q(6), out(2)
+  real(c_double) :: radii(3), axes(3, 3)
+  integer(c_int) :: status
+  integer :: ntest = 0, nfail = 0
+  character(len=:), allocatable :: version, message_ok, message_spd
+
+  write (*, '(a)') 'TAP version 13'
+  write (*, '(a)') '1..9'
+
+  ! Version: the loaded library and the module constant agree.
+  version = pw85_version_string()
+  call check(version == PW85_VERSION_HEADER, &
+             'pw85_version_string() = "' // version // '" = PW85_VERSION_HEADER')
+  message_ok = pw85_strerror_string(PW85_OK)
+  message_spd = pw85_strerror_string(PW85_ERR_NOT_SPD)
+  call check(len(message_ok) > 0 .and. message_spd /= message_ok, &
+             'pw85_strerror_string() distinguishes codes: "' // message_spd // '"')
+
+  ! The tutorial spheroids.
+  x1 = [-0.5_c_double, 0.4_c_double, -0.7_c_double]
+  n1 = [0.0_c_double, 0.0_c_double, 1.0_c_double]
+  x2 = [0.2_c_double, -0.3_c_double, 0.4_c_double]
+  n2 = [1.0_c_double, 0.0_c_double, 0.0_c_double]
+  r12 = x2 - x1
+  call pw85_spheroid(10.0_c_double, 0.1_c_double, n1, q1)
+  call pw85_spheroid(0.5_c_double, 5.0_c_double, n2, q2)
+  ! Q = a^2 I + (c^2 - a^2) n n^T, upper triangle row by row; the entries
+  ! are sums of terms up to max(a, c)^2, so allow a few ulps of that.
+  call check(maxval(abs(q1 - [100.0_c_double, 0.0_c_double, 0.0_c_double, &
+                              100.0_c_double, 0.0_c_double, 0.01_c_double])) &
+               <= 4 * epsilon(1.0_c_double) * 100.0_c_double .and. &
+             maxval(abs(q2 - [25.0_c_double, 0.0_c_double, 0.0_c_double, &
+                              0.25_c_double, 0.0_c_double, 0.25_c_double])) &
+               <= 4 * epsilon(1.0_c_double) * 25.0_c_double, &
+             'pw85_spheroid: tutorial quadratic forms')
+
+  out = -1.0_c_double
+  status = pw85_contact_function(r12, q1, q2, out)
+  call check(status == PW85_OK, 'pw85_contact_function: status PW85_OK')
+  call check(abs(out(1) - MU2_REF) <= RTOL * MU2_REF, &
+             'pw85_contact_function: mu^2 of the tutorial to 1e-12 relative')
+  call check(abs(out(2) - LAMBDA_REF) <= RTOL * LAMBDA_REF, &
+             'pw85_contact_function: lambda of the tutorial to 1e-12 relative')
+
+  ! pw85_ellipsoid with the axes of the second spheroid (axis of revolution
+  ! along x, semi-axes 5, 0.5, 0.5) gives the same quadratic form.
+  radii = [5.0_c_double, 0.5_c_double, 0.5_c_double]
+  axes = 0.0_c_double
+  axes(1, 1) = 1.0_c_double
+  axes(2, 2) = 1.0_c_double
+  axes(3, 3) = 1.0_c_double
+  status = pw85_ellipsoid(radii, axes, q)
+  call check(status == PW85_OK .and. &
+             maxval(abs(q - q2)) <= 4 * epsilon(1.0_c_double) * 25.0_c_double, &
+             'pw85_ellipsoid: axis-aligned spheroid equals pw85_spheroid')
+  ! Non-orthonormal axes are refused and q is NaN-filled.
+  axes(1, 2) = 0.5_c_double
+  status = pw85_ellipsoid(radii, axes, q)
+  call check(status == PW85_ERR_NOT_ORTHONORMAL .and. all(ieee_is_nan(q)), &
+             'pw85_ellipsoid: non-orthonormal axes give PW85_ERR_NOT_ORTHONORMAL')
+
+  ! NaN in r12: PW85_ERR_INVALID_ARGUMENT, out NaN-filled.
+  r12(2) = ieee_value(r12(2), ieee_quiet_nan)
+  out = 0.0_c_double
+  status = pw85_contact_function(r12, q1, q2, out)
+  call check(status == PW85_ERR_INVALID_ARGUMENT .and. all(ieee_is_nan(out)), &
+             'pw85_contact_function: NaN in r12 gives PW85_ERR_INVALID_ARGUMENT')
+
+  if (nfail > 0) then
+    write (*, '(a,i0,a,i0,a)') '# ', nfail, ' of ', ntest, ' tests failed'
+    error stop 1
+  end if
+
+contains
+
+  subroutine check(ok, description)
+    logical, intent(in) :: ok
+    character(len=*), intent(in) :: description
+    ntest = ntest + 1
+    if (ok) then
+      write (*, '(a,i0,a,a)') 'ok ', ntest, ' - ', description
+    else
+      nfail = nfail + 1
+      write (*, '(a,i0,a,a)') 'not ok ', ntest, ' - ', description
+    end if
+  end subroutine check
+
+end program test_fortran
