@@ -270,9 +270,15 @@ def contact(q1, q2, r):
             if hi - lo <= 2:
                 break
             d = evd(K)
-            step = (2 * v + d) // (2 * d) if d != 0 else mpz(0)
-            if abs(step) <= 1:
-                for cand in (K - 1, K + 1):
+            if d == 0:
+                K = (lo + hi) >> 1
+                continue
+            # Newton iterate K - v/d, floored to the lattice (exact)
+            Kf = (K * d - v) // d
+            if abs(Kf - K) <= 8:
+                # converged to within a few lattice steps: test both
+                # lattice points around the Newton iterate
+                for cand in (Kf, Kf + 1):
                     w = ev(cand)
                     its += 1
                     if w == 0:
@@ -284,7 +290,7 @@ def contact(q1, q2, r):
                         hi = min(hi, cand)
                 if root is not None or hi - lo <= 2:
                     break
-            Kn = K - step
+            Kn = Kf
             if not (lo < Kn < hi):
                 Kn = (lo + hi) >> 1
             K = Kn
@@ -614,10 +620,10 @@ def main():
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--per-class", type=int, default=5000,
                     help="/contact pairs per class (default 5000)")
-    ap.add_argument("--near-per-class", type=int, default=1000,
-                    help="/near_contact pairs per class (default 1000)")
-    ap.add_argument("--check-samples", type=int, default=40,
-                    help="rows per group cross-checked by golden section (default 40)")
+    ap.add_argument("--near-per-class", type=int, default=2000,
+                    help="/near_contact pairs per class (default 2000)")
+    ap.add_argument("--check-samples", type=int, default=200,
+                    help="rows per group cross-checked by golden section (default 200)")
     ap.add_argument("--quick", action="store_true",
                     help="tiny sizes, for testing the generator only")
     args = ap.parse_args()
@@ -716,12 +722,13 @@ def main():
     for i, (row, x) in enumerate(zip(n_rows, res)):
         dev = mpmath.mpf(x[3]) - 1
         if dev == 0 or (dev > 0) != (row[7] > 0):
-            wrong.append((i, row[6], mpmath.nstr(dev, 5)))
+            wrong.append((i, row[0], row[6], row[7], mpmath.nstr(dev, 5)))
     print("  /near_contact: %d rows; %d on the intended side of 1, %d not "
           "(after rounding r12 to doubles)" % (len(res), len(res) - len(wrong), len(wrong)),
           file=sys.stderr)
-    for i, eps, dev in wrong[:20]:
-        print("    row %d: eps_target=%.3e, mu2-1=%s" % (i, eps, dev), file=sys.stderr)
+    for i, cls, eps, side, dev in wrong[:20]:
+        print("    row %d (class %d): eps_target=%.3e, intended side %+d, mu2-1=%s"
+              % (i, cls, eps, side, dev), file=sys.stderr)
     near_wrong = wrong
     rel_dev = []
     for row, x in zip(n_rows, res):
