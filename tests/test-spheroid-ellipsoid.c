@@ -1,0 +1,139 @@
+/* Quadratic forms of ellipsoids: pw85_spheroid (pw85 1.0) and pw85_ellipsoid. */
+#include <float.h>
+#include <math.h>
+
+#include <pw85.h>
+
+#include "testutil.h"
+
+/* x^T Q^{-1} x == 1 for the tip of every semi-axis. */
+static void assert_on_surface(const double q[6], const double x[3], double tol) {
+  long double xl[3] = {x[0], x[1], x[2]};
+  long double const v = xT_inv_x_ld(q, xl);
+  g_assert_cmpfloat(fabs((double)v - 1.0), <=, tol);
+}
+
+static void test_spheroid_tutorial(void) {
+  /* The matrices printed by pw85 1.0's tutorial. */
+  double const n1[3] = {0., 0., 1.}, n2[3] = {1., 0., 0.};
+  double q1[6], q2[6];
+  pw85_spheroid(10., 0.1, n1, q1);
+  pw85_spheroid(0.5, 5., n2, q2);
+  double const e1[6] = {100., 0., 0., 100., 0., 0.01};
+  double const e2[6] = {25., 0., 0., 0.25, 0., 0.25};
+  for (int i = 0; i < 6; i++) {
+    g_assert_cmpfloat(fabs(q1[i] - e1[i]), <=, 4 * DBL_EPSILON * 100.);
+    g_assert_cmpfloat(fabs(q2[i] - e2[i]), <=, 4 * DBL_EPSILON * 25.);
+  }
+}
+
+static void test_spheroid_random(void) {
+  GRand *rng = g_rand_new_with_seed(7);
+  for (int k = 0; k < 1000; k++) {
+    double axes[9], radii[3];
+    random_axes(rng, axes);
+    random_radii(rng, 0.01, 100., radii);
+    double const a = radii[0], c = radii[1];
+    double const *n = axes; /* first row: axis of revolution */
+    double q[6];
+    pw85_spheroid(a, c, n, q);
+    /* error of x^T Q^{-1} x ~ eps * cond(Q) = eps (a/c)^2 */
+    double const tol = 1024 * DBL_EPSILON * fmax(a / c, c / a) * fmax(a / c, c / a);
+    double x[3];
+    for (int i = 0; i < 3; i++) x[i] = c * axes[i];
+    assert_on_surface(q, x, tol);
+    for (int row = 1; row < 3; row++) {
+      for (int i = 0; i < 3; i++) x[i] = a * axes[3 * row + i];
+      assert_on_surface(q, x, tol);
+    }
+  }
+  g_rand_free(rng);
+}
+
+static void test_spheroid_bad_input(void) {
+  double const n[3] = {0., 0., 1.}, zero[3] = {0., 0., 0.}, nan_n[3] = {NAN, 0., 1.};
+  struct {
+    double a, c;
+    const double *n;
+  } const cases[] = {{0., 1., n},  {1., -1., n},      {NAN, 1., n},
+                     {1., INFINITY, n}, {1., 1., zero}, {1., 1., nan_n}, {1., 1., NULL}};
+  for (size_t k = 0; k < G_N_ELEMENTS(cases); k++) {
+    double q[6] = {1, 2, 3, 4, 5, 6};
+    pw85_spheroid(cases[k].a, cases[k].c, cases[k].n, q);
+    for (int i = 0; i < 6; i++) g_assert_true(isnan(q[i]));
+  }
+  pw85_spheroid(1., 1., n, NULL); /* must not crash */
+}
+
+static void test_ellipsoid_random(void) {
+  GRand *rng = g_rand_new_with_seed(8);
+  for (int k = 0; k < 1000; k++) {
+    double axes[9], radii[3], q[6];
+    random_axes(rng, axes);
+    random_radii(rng, 0.1, 10., radii);
+    g_assert_cmpint(pw85_ellipsoid(radii, axes, q), ==, PW85_OK);
+    for (int row = 0; row < 3; row++) {
+      double x[3];
+      for (int i = 0; i < 3; i++) x[i] = radii[row] * axes[3 * row + i];
+      assert_on_surface(q, x, 1e-12);
+    }
+  }
+  g_rand_free(rng);
+}
+
+/* A spheroid is an ellipsoid with two equal radii. */
+static void test_ellipsoid_matches_spheroid(void) {
+  double const s = 1.0 / sqrt(2.0);
+  double const axes[9] = {s, s, 0., -s, s, 0., 0., 0., 1.};
+  double const radii[3] = {3., 0.5, 0.5};
+  double q[6], qs[6];
+  g_assert_cmpint(pw85_ellipsoid(radii, axes, q), ==, PW85_OK);
+  pw85_spheroid(0.5, 3., axes, qs);
+  for (int i = 0; i < 6; i++) g_assert_cmpfloat(fabs(q[i] - qs[i]), <=, 16 * DBL_EPSILON * 9.);
+}
+
+static void test_ellipsoid_bad_input(void) {
+  double const axes[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  double const skew[9] = {1, 1e-9, 0, 0, 1, 0, 0, 0, 1};
+  double const nonunit[9] = {1.001, 0, 0, 0, 1, 0, 0, 0, 1};
+  double const nan_axes[9] = {1, 0, 0, 0, NAN, 0, 0, 0, 1};
+  double const radii[3] = {1, 2, 3}, zero_r[3] = {1, 0, 3}, neg_r[3] = {1, 2, -3},
+               nan_r[3] = {1, NAN, 3}, inf_r[3] = {INFINITY, 1, 1};
+  struct {
+    const double *radii, *axes;
+    int status;
+  } const cases[] = {
+      {NULL, axes, PW85_ERR_INVALID_ARGUMENT},   {radii, NULL, PW85_ERR_INVALID_ARGUMENT},
+      {nan_r, axes, PW85_ERR_INVALID_ARGUMENT},  {inf_r, axes, PW85_ERR_INVALID_ARGUMENT},
+      {radii, nan_axes, PW85_ERR_INVALID_ARGUMENT}, {zero_r, axes, PW85_ERR_NOT_SPD},
+      {neg_r, axes, PW85_ERR_NOT_SPD},           {radii, skew, PW85_ERR_NOT_ORTHONORMAL},
+      {radii, nonunit, PW85_ERR_NOT_ORTHONORMAL},
+  };
+  for (size_t k = 0; k < G_N_ELEMENTS(cases); k++) {
+    double q[6] = {1, 2, 3, 4, 5, 6};
+    g_assert_cmpint(pw85_ellipsoid(cases[k].radii, cases[k].axes, q), ==, cases[k].status);
+    for (int i = 0; i < 6; i++) g_assert_true(isnan(q[i]));
+  }
+  g_assert_cmpint(pw85_ellipsoid(radii, axes, NULL), ==, PW85_ERR_INVALID_ARGUMENT);
+  /* Axes orthonormal to within 1e-11 are accepted. */
+  double const almost[9] = {1, 1e-11, 0, 0, 1, 0, 0, 0, 1};
+  double q[6];
+  g_assert_cmpint(pw85_ellipsoid(radii, almost, q), ==, PW85_OK);
+  /* Extreme but valid sizes. */
+  double const tiny[3] = {1e-8, 1e-8, 1e-8}, huge[3] = {1e8, 1e8, 1e8};
+  g_assert_cmpint(pw85_ellipsoid(tiny, axes, q), ==, PW85_OK);
+  g_assert_cmpfloat(rel_error(q[0], 1e-16), <=, 2 * DBL_EPSILON);
+  g_assert_cmpint(pw85_ellipsoid(huge, axes, q), ==, PW85_OK);
+  g_assert_cmpfloat(rel_error(q[5], 1e16), <=, 2 * DBL_EPSILON);
+}
+
+int main(int argc, char **argv) {
+  g_test_init(&argc, &argv, NULL);
+  g_test_add_func("/spheroid/tutorial", test_spheroid_tutorial);
+  g_test_add_func("/spheroid/random", test_spheroid_random);
+  g_test_add_func("/spheroid/bad_input", test_spheroid_bad_input);
+  g_test_add_func("/ellipsoid/random", test_ellipsoid_random);
+  g_test_add_func("/ellipsoid/matches_spheroid", test_ellipsoid_matches_spheroid);
+  g_test_add_func("/ellipsoid/bad_input", test_ellipsoid_bad_input);
+  return g_test_run();
+}

@@ -1,0 +1,163 @@
+#include "testutil.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+double rel_error(double act, double exp) {
+  if (exp == 0.0) return fabs(act);
+  return fabs(act - exp) / fabs(exp);
+}
+
+void random_axes(GRand *rng, double axes[9]) {
+  /* Unit quaternion from four Gaussian deviates (Box-Muller) -> rotation. */
+  double g[4];
+  for (int i = 0; i < 4; i += 2) {
+    double u1 = g_rand_double_range(rng, 1e-300, 1.0);
+    double u2 = g_rand_double(rng);
+    g[i] = sqrt(-2.0 * log(u1)) * cos(2.0 * G_PI * u2);
+    g[i + 1] = sqrt(-2.0 * log(u1)) * sin(2.0 * G_PI * u2);
+  }
+  double n = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2] + g[3] * g[3]);
+  double w = g[0] / n, x = g[1] / n, y = g[2] / n, z = g[3] / n;
+  double m[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w),
+                 2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
+                 2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)};
+  for (int i = 0; i < 9; i++) axes[i] = m[i];
+}
+
+void random_radii(GRand *rng, double lo, double hi, double radii[3]) {
+  for (int i = 0; i < 3; i++)
+    radii[i] = exp(g_rand_double_range(rng, log(lo), log(hi)));
+}
+
+void make_q(const double radii[3], const double axes[9], double q[6]) {
+  int idx = 0;
+  for (int i = 0; i < 3; i++)
+    for (int j = i; j < 3; j++, idx++) {
+      long double s = 0.0L;
+      for (int k = 0; k < 3; k++)
+        s += (long double)radii[k] * radii[k] * axes[3 * k + i] * axes[3 * k + j];
+      q[idx] = (double)s;
+    }
+}
+
+/* Symmetric matrix entries (i, j) from the upper-triangle storage. */
+static long double entry(const long double a[6], int i, int j) {
+  static const int index[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+  return a[index[i][j]];
+}
+
+static long double det_ld(const long double a[6]) {
+  return entry(a, 0, 0) * (entry(a, 1, 1) * entry(a, 2, 2) - entry(a, 1, 2) * entry(a, 2, 1)) -
+         entry(a, 0, 1) * (entry(a, 1, 0) * entry(a, 2, 2) - entry(a, 1, 2) * entry(a, 2, 0)) +
+         entry(a, 0, 2) * (entry(a, 1, 0) * entry(a, 2, 1) - entry(a, 1, 1) * entry(a, 2, 0));
+}
+
+/* x^T adj(A) x, adj(A)_ij = cofactor C_ji = C_ij for symmetric A. */
+static long double xT_adj_x_ld(const long double a[6], const long double x[3]) {
+  long double c00 = entry(a, 1, 1) * entry(a, 2, 2) - entry(a, 1, 2) * entry(a, 1, 2);
+  long double c11 = entry(a, 0, 0) * entry(a, 2, 2) - entry(a, 0, 2) * entry(a, 0, 2);
+  long double c22 = entry(a, 0, 0) * entry(a, 1, 1) - entry(a, 0, 1) * entry(a, 0, 1);
+  long double c01 = entry(a, 0, 2) * entry(a, 1, 2) - entry(a, 0, 1) * entry(a, 2, 2);
+  long double c02 = entry(a, 0, 1) * entry(a, 1, 2) - entry(a, 0, 2) * entry(a, 1, 1);
+  long double c12 = entry(a, 0, 1) * entry(a, 0, 2) - entry(a, 0, 0) * entry(a, 1, 2);
+  return c00 * x[0] * x[0] + c11 * x[1] * x[1] + c22 * x[2] * x[2] +
+         2.0L * (c01 * x[0] * x[1] + c02 * x[0] * x[2] + c12 * x[1] * x[2]);
+}
+
+long double xT_inv_x_ld(const double a[6], const long double x[3]) {
+  long double al[6];
+  for (int i = 0; i < 6; i++) al[i] = a[i];
+  return xT_adj_x_ld(al, x) / det_ld(al);
+}
+
+long double f_ld(long double lambda, const double r[3], const double q1[6],
+                 const double q2[6]) {
+  long double q[6], x[3];
+  for (int i = 0; i < 6; i++) q[i] = (1.0L - lambda) * q1[i] + lambda * q2[i];
+  for (int i = 0; i < 3; i++) x[i] = r[i];
+  return lambda * (1.0L - lambda) * xT_adj_x_ld(q, x) / det_ld(q);
+}
+
+long double mu2_ld(const double r[3], const double q1[6], const double q2[6],
+                   long double *lambda) {
+  const long double invphi = 0.618033988749894848204586834365638118L;
+  long double a = 0.0L, b = 1.0L;
+  long double c = b - invphi * (b - a), d = a + invphi * (b - a);
+  long double fc = f_ld(c, r, q1, q2), fd = f_ld(d, r, q1, q2);
+  for (int it = 0; it < 200 && b - a > 1e-15L; it++) {
+    if (fc > fd) {
+      b = d, d = c, fd = fc;
+      c = b - invphi * (b - a);
+      fc = f_ld(c, r, q1, q2);
+    } else {
+      a = c, c = d, fc = fd;
+      d = a + invphi * (b - a);
+      fd = f_ld(d, r, q1, q2);
+    }
+  }
+  long double const l = 0.5L * (a + b);
+  if (lambda != NULL) *lambda = l;
+  return f_ld(l, r, q1, q2);
+}
+
+const char *ref_data_path(void) {
+  const char *env = getenv("PW85_REF_DATA");
+  if (env != NULL && env[0] != '\0') return env;
+  return PW85_REF_DATA_PATH;
+}
+
+static void inverse_ld(const long double q[6], long double qi[3][3]) {
+  long double const m[3][3] = {{q[0], q[1], q[2]}, {q[1], q[3], q[4]}, {q[2], q[4], q[5]}};
+  long double const det = det_ld(q);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      int const i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+      qi[i][j] = (m[i1][j1] * m[i2][j2] - m[i1][j2] * m[i2][j1]) / det;
+    }
+}
+
+void df_ld(long double lambda, const double r[3], const double q1[6], const double q2[6],
+           long double *df, long double *d2f) {
+  long double q[6], qi[3][3], d[6];
+  for (int i = 0; i < 6; i++) {
+    q[i] = (1.0L - lambda) * q1[i] + lambda * q2[i];
+    d[i] = (long double)q2[i] - q1[i];
+  }
+  inverse_ld(q, qi);
+  long double const dm[3][3] = {{d[0], d[1], d[2]}, {d[1], d[3], d[4]}, {d[2], d[4], d[5]}};
+  long double s[3], u[3], v[3];
+  for (int i = 0; i < 3; i++) s[i] = qi[i][0] * r[0] + qi[i][1] * r[1] + qi[i][2] * r[2];
+  for (int i = 0; i < 3; i++) u[i] = dm[i][0] * s[0] + dm[i][1] * s[1] + dm[i][2] * s[2];
+  for (int i = 0; i < 3; i++) v[i] = qi[i][0] * u[0] + qi[i][1] * u[1] + qi[i][2] * u[2];
+  long double rs = 0, su = 0, uv = 0;
+  for (int i = 0; i < 3; i++) rs += r[i] * s[i], su += s[i] * u[i], uv += u[i] * v[i];
+  long double const l = lambda;
+  *df = (1 - 2 * l) * rs - l * (1 - l) * su;
+  *d2f = -2 * rs - 2 * (1 - 2 * l) * su + 2 * l * (1 - l) * uv;
+}
+
+void grid_direction(int k, double n[3]) {
+  /* Icosahedron: cyclic permutations of (0, +-1, +-phi), normalised. */
+  double const phi = 0.5 * (1.0 + sqrt(5.0));
+  double const norm = sqrt(1.0 + phi * phi);
+  int const perm = k / 4, s1 = (k & 1) ? -1 : 1, s2 = (k & 2) ? -1 : 1;
+  double v[3] = {0.0, s1 * 1.0 / norm, s2 * phi / norm};
+  for (int i = 0; i < 3; i++) n[(i + perm) % 3] = v[i];
+}
+
+void grid_spheroid(int i, double q[6]) {
+  static const double radii[3] = {0.01999, 1.999, 9.999};
+  int const ia = i / 36, ic = (i / 12) % 3, in = i % 12;
+  double n[3];
+  grid_direction(in, n);
+  double const a = radii[ia], c = radii[ic];
+  /* Q = a^2 I + (c^2 - a^2) n n^T, in long double (independent of the library). */
+  long double const a2 = (long double)a * a, d = (long double)c * c - a2;
+  q[0] = (double)(a2 + d * n[0] * n[0]);
+  q[1] = (double)(d * n[0] * n[1]);
+  q[2] = (double)(d * n[0] * n[2]);
+  q[3] = (double)(a2 + d * n[1] * n[1]);
+  q[4] = (double)(d * n[1] * n[2]);
+  q[5] = (double)(a2 + d * n[2] * n[2]);
+}
