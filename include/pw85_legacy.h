@@ -107,7 +107,8 @@ PW85_LEGACY_API double pw85_legacy_f2(double lambda, double const r12[PW85_DIM],
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL pointer, NaN or infinite
  * value), PW85_ERR_NOT_SPD (q1 or q2 not positive definite),
  * PW85_ERR_NO_CONVERGENCE (the bracket did not shrink to a few ulps of lambda
- * within the iteration limit) or PW85_ERR_INACCURATE (converged, but the
+ * within the iteration limit; or rounding made Q(lambda) lose positive
+ * definiteness, out[0] is then NaN) or PW85_ERR_INACCURATE (converged, but the
  * rounding-error estimate of f(lambda), which grows with the condition number
  * of Q(lambda), exceeds 1e-8 relative). On the last two, out holds the best
  * estimate; on the first two it is NaN-filled (when out is not NULL). */
@@ -123,8 +124,10 @@ PW85_LEGACY_API int pw85_legacy_contact_function1(double const r12[PW85_DIM],
  * r12 = 0 gives mu^2 = 0, lambda = 0.5 and PW85_OK.
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT, PW85_ERR_NOT_SPD (as
  * pw85_legacy_contact_function1(), out NaN-filled), PW85_ERR_NO_CONVERGENCE
- * (the computed c does not change sign on [0, 1], so no root is bracketed; out
- * holds the better endpoint) or PW85_ERR_INACCURATE (the error estimate of
+ * (the computed c does not change sign on [0, 1], so no root is bracketed,
+ * and out holds the endpoint the computed sign points to, mu^2 = f = 0 there;
+ * or the rational fraction cannot be evaluated at the root found, b = 0 or
+ * overflow, and out[0] is NaN) or PW85_ERR_INACCURATE (the error estimate of
  * mu^2 that follows from the cancellation in the coefficients of a and b
  * exceeds 1e-8 relative; out holds the estimate). */
 PW85_LEGACY_API int pw85_legacy_contact_function2(double const r12[PW85_DIM],
