@@ -154,6 +154,61 @@ static void run_group(gconstpointer data) {
   g_free(cls);
 }
 
+/* /special (coincident centres, identical ellipsoids, spheres, needles,
+ * high aspect ratios; 9 kinds): every result off by more than WRONG_RTOL is
+ * flagged, and those returned with PW85_OK are accurate. Measured max
+ * relative error with PW85_OK: method 1 2.3e-10, method 2 4.0e-11; flagged:
+ * method 1 100 of 660, method 2 286 of 660 (all 30 "very different spheres"
+ * and all parallel / nearly parallel needles). */
+static const double special_ok_max_rel[2] = {1e-9, 2e-10};
+
+static void run_special(gconstpointer data) {
+  int const method = GPOINTER_TO_INT(data);
+  hid_t const file = legacy_open_ref_data();
+  if (file < 0) return;
+  gsize n, n3, n6, nq, nk;
+  double *r12 = legacy_read_double(file, "/special/r12", &n3);
+  double *q1 = legacy_read_double(file, "/special/q1", &n6);
+  double *q2 = legacy_read_double(file, "/special/q2", &nq);
+  double *mu2 = legacy_read_double(file, "/special/mu2", &n);
+  int *kind = legacy_read_int(file, "/special/kind", &nk);
+  H5Fclose(file);
+  g_assert_cmpuint(n3, ==, 3 * n);
+  g_assert_cmpuint(nk, ==, n);
+  ContactFn const fn = method == 1 ? pw85_legacy_contact_function1
+                                   : pw85_legacy_contact_function2;
+  double max_ok = 0.0;
+  gsize flagged = 0, unexplained = 0;
+  for (gsize i = 0; i < n; ++i) {
+    double out[2];
+    int const status = fn(r12 + 3 * i, q1 + 6 * i, q2 + 6 * i, out);
+    g_assert_true(status == PW85_OK || status == PW85_ERR_NO_CONVERGENCE ||
+                  status == PW85_ERR_INACCURATE);
+    double const err = legacy_rel_error(out[0], mu2[i]);
+    if (status != PW85_OK) {
+      ++flagged;
+    } else {
+      if (!(err <= max_ok)) max_ok = err;
+      if (!(err <= WRONG_RTOL) && !is_known_failure("special", method, (int)i)) {
+        ++unexplained;
+        g_test_message("UNEXPLAINED special method %d row %" G_GSIZE_FORMAT
+                       " kind %d: mu2 = %.17g, expected %.17g", method, i, kind[i],
+                       out[0], mu2[i]);
+      }
+    }
+  }
+  g_test_message("special, contact_function%d: %" G_GSIZE_FORMAT " rows, %" G_GSIZE_FORMAT
+                 " flagged, max relative error with PW85_OK %.3g", method, n, flagged,
+                 max_ok);
+  g_assert_cmpuint(unexplained, ==, 0);
+  g_assert_cmpfloat(max_ok, <=, special_ok_max_rel[method - 1]);
+  g_free(r12);
+  g_free(q1);
+  g_free(q2);
+  g_free(mu2);
+  g_free(kind);
+}
+
 /* Spheres of radii 1 and 2 at distance d: mu^2 = (d / 3)^2, lambda = 1/3. */
 static void test_spheres(gconstpointer data) {
   ContactFn const fn = GPOINTER_TO_INT(data) == 1 ? pw85_legacy_contact_function1
@@ -210,6 +265,10 @@ int main(int argc, char **argv) {
                        run_group);
   g_test_add_data_func("/legacy/contact_function2/reference_near_contact", &cases[3],
                        run_group);
+  g_test_add_data_func("/legacy/contact_function1/reference_special", GINT_TO_POINTER(1),
+                       run_special);
+  g_test_add_data_func("/legacy/contact_function2/reference_special", GINT_TO_POINTER(2),
+                       run_special);
   g_test_add_data_func("/legacy/contact_function1/spheres", GINT_TO_POINTER(1), test_spheres);
   g_test_add_data_func("/legacy/contact_function2/spheres", GINT_TO_POINTER(2), test_spheres);
   g_test_add_data_func("/legacy/contact_function1/bad_input", GINT_TO_POINTER(1),
