@@ -158,6 +158,80 @@ PW85_API int pw85_contact_function(double const r12[PW85_DIM],
                                    double const q1[PW85_SYM],
                                    double const q2[PW85_SYM], double out[2]);
 
+/* ---- Distance of closest approach (docs/dca.md) ----------------------------
+ * The distance of closest approach d(u) of two ellipsoids (or ellipses) whose
+ * centres lie on a line of direction u is the distance between the centres
+ * at which they are externally tangent. Since the contact function is
+ * homogeneous of degree 2 in r12 and equals 1 at tangency,
+ * d(u) = 1 / sqrt(F(u / |u|, Q1, Q2)).
+ * In 2D an ellipse is {m : (m - c)^T Q^{-1} (m - c) <= 1} with Q symmetric
+ * positive definite stored as its upper triangle q = {Q00, Q01, Q11}.
+ * Directions u need not be unit vectors: any finite non-zero u is normalised.
+ * On error the outputs are NaN (when their pointers are not NULL). */
+
+/* Method identifiers (shared with pw85_contact_function_method). */
+#ifndef PW85_METHOD_DEFAULT
+#  define PW85_METHOD_DEFAULT 0
+#endif
+#ifndef PW85_METHOD_BRENT
+#  define PW85_METHOD_BRENT 1
+#endif
+#ifndef PW85_METHOD_ZHENG
+#  define PW85_METHOD_ZHENG 4
+#endif
+
+/* Default absolute tolerance (radians) on the angle of the cutting plane of
+ * the plane-rotation method (pw85_dca with PW85_METHOD_ZHENG, pw85_dca_ex
+ * with theta_tol = 0). The error of d it leaves is of order
+ * d''(theta) tol^2 / 2, far below the rounding errors (docs/dca.md). */
+#define PW85_DCA_THETA_TOL 1e-8
+/* Budget of 2D evaluations (cutting planes) of the plane-rotation method. */
+#define PW85_DCA_MAX_EVAL 100
+
+/* Distance of closest approach of two ellipses centred on a line of direction
+ * u, by the closed-form solution of the 2D problem (Zheng & Palffy-Muhoray,
+ * Phys. Rev. E 75, 061709 (2007): a quartic, solved by Ferrari's method, its
+ * physical root polished by a safeguarded Newton iteration).
+ * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity, u = 0),
+ * PW85_ERR_NOT_SPD (q1 or q2 not positive definite) or
+ * PW85_ERR_NO_CONVERGENCE (polishing did not converge; *d still written). */
+PW85_API int pw85_dca_2d(double const u[2], double const q1[3],
+                         double const q2[3], double *d);
+
+/* Contact function of two ellipses (the 2D analogue of
+ * pw85_contact_function): out[0] = mu^2 = max over [0, 1] of
+ * f(lambda) = lambda (1 - lambda) r12^T ((1 - lambda) Q1 + lambda Q2)^{-1} r12,
+ * out[1] = lambda, its maximiser; computed to full double precision by a
+ * safeguarded Newton iteration on f'. r12 = 0 gives mu^2 = 0, lambda = 0.5.
+ * pw85_dca_2d(u) = 1 / sqrt(out[0]) for r12 = u / |u|.
+ * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity),
+ * PW85_ERR_NOT_SPD or PW85_ERR_NO_CONVERGENCE (estimate still written). */
+PW85_API int pw85_contact_function_2d(double const r12[2], double const q1[3],
+                                      double const q2[3], double out[2]);
+
+/* Distance of closest approach of two ellipsoids centred on a line of
+ * direction u. method:
+ *  - PW85_METHOD_ZHENG: rotation of a plane through the line of centres, the
+ *    2D problem of the two sections solved as by pw85_dca_2d (Zheng,
+ *    Iglesias & Palffy-Muhoray, 2008), tolerance PW85_DCA_THETA_TOL;
+ *  - PW85_METHOD_DEFAULT, PW85_METHOD_BRENT: d = 1 / sqrt(F(u / |u|)), F by
+ *    pw85_contact_function.
+ * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity, u = 0),
+ * PW85_ERR_NOT_SPD, PW85_ERR_UNKNOWN_METHOD or PW85_ERR_NO_CONVERGENCE (the
+ * estimate is still written). */
+PW85_API int pw85_dca(double const u[PW85_DIM], double const q1[PW85_SYM],
+                      double const q2[PW85_SYM], int method, double *d);
+
+/* pw85_dca(..., PW85_METHOD_ZHENG, d) with an explicit tolerance theta_tol
+ * (radians, >= 0; 0 selects PW85_DCA_THETA_TOL) on the angle of the optimal
+ * plane, reporting in *evaluations (may be NULL) the number of 2D problems
+ * solved (at most PW85_DCA_MAX_EVAL). Returns as pw85_dca, plus
+ * PW85_ERR_INVALID_ARGUMENT for a negative or non-finite theta_tol and
+ * PW85_ERR_NO_CONVERGENCE when the budget is exhausted. */
+PW85_API int pw85_dca_ex(double const u[PW85_DIM], double const q1[PW85_SYM],
+                         double const q2[PW85_SYM], double theta_tol,
+                         double *d, int *evaluations);
+
 PW85_END_DECLS
 
 #endif /* PW85_H */

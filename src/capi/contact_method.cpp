@@ -1,0 +1,39 @@
+// extern "C" entry point of the method-selecting contact function (issue 7):
+// validate, call pw85::contact_method (src/core/methods.cpp), copy out.
+#include <cmath>
+
+#include "pw85.h"
+#include "../core/contact.hpp"
+#include "../core/sym3.hpp"
+#include "validate.hpp"
+
+static_assert(pw85::kMethodDefault == PW85_METHOD_DEFAULT, "method ids must match pw85.h");
+static_assert(pw85::kMethodBrent == PW85_METHOD_BRENT, "");
+static_assert(pw85::kMethodNewton == PW85_METHOD_NEWTON, "");
+static_assert(pw85::kMethodRational == PW85_METHOD_RATIONAL, "");
+static_assert(pw85::kMethodZheng == PW85_METHOD_ZHENG, "");
+
+extern "C" int pw85_contact_function_method(double const r12[PW85_DIM],
+                                            double const q1[PW85_SYM],
+                                            double const q2[PW85_SYM], int method,
+                                            pw85_result *res) {
+  if (res == nullptr) return PW85_ERR_INVALID_ARGUMENT;
+  double const nan = std::nan("");
+  res->mu2 = nan;
+  res->lambda = nan;
+  res->mu2_error = nan;
+  res->iterations = 0;
+  res->method = method;
+  int const status = pw85::capi::validate_pair(r12, q1, q2);
+  if (status != PW85_OK) return status;
+  pw85::MethodResult m;
+  int const s = pw85::contact_method(method, pw85::load_vec3(r12), pw85::load_sym3(q1),
+                                     pw85::load_sym3(q2), m);
+  if (s == PW85_ERR_UNKNOWN_METHOD) return s;
+  res->mu2 = m.mu2;
+  res->lambda = m.lambda;
+  res->mu2_error = m.mu2_error;
+  res->iterations = m.iterations;
+  res->method = m.method;
+  return s;
+}

@@ -1,0 +1,116 @@
+// Dispatcher of pw85_contact_function_method (docs/methods.md): the common
+// preliminaries of every method, then the method itself.
+//  - r = 0: mu2 = 0 exactly (f vanishes identically), lambda = 1/2;
+//  - r and Q1, Q2 are rescaled by powers of two (exact) when their magnitudes
+//    are extreme, so that no method overflows or underflows:
+//    r' = 2^-er r, Q' = 2^-eq Q  =>  mu2 = 2^(2 er - eq) mu2', same lambda;
+//  - BRENT is pw85 1.0's algorithm (brent.cpp) plus the error estimate of
+//    eq. (M10) at its lambda, compared with kBrentRelAccuracy.
+#include <algorithm>
+#include <cmath>
+
+#include "contact.hpp"
+#include "newton.hpp"
+
+namespace pw85 {
+
+namespace {
+
+int exponent_of_max(double const *x, int n) noexcept {
+  double m = 0.0;
+  for (int i = 0; i < n; ++i) m = std::fmax(m, std::fabs(x[i]));
+  int e;
+  std::frexp(m, &e);
+  return e;
+}
+
+Status contact_brent_checked(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                             MethodResult &res) noexcept {
+  ContactResult cr;
+  Status const s = contact_brent(r, q1, q2, cr);
+  res.mu2 = cr.mu2;
+  res.lambda = cr.lambda;
+  res.iterations = cr.iterations;
+  res.mu2_error = std::nan("");
+  NewtonState st;
+  FEval &e = st.e;
+  e.f = std::nan("");
+  st.step = 0.0;
+  st.trunc = 0.0;
+  if (std::isfinite(cr.lambda) && f_eval(cr.lambda, r, q1, q2, difference(q2, q1), e)) {
+    st.mu2 = e.f;
+    st.lambda = e.lambda;
+    res.mu2_error = newton_error(st, r, q1, q2) + std::fabs(e.f - cr.mu2);
+  }
+  if (!std::isfinite(res.mu2)) {
+    res.mu2 = std::isfinite(e.f) ? e.f : 0.0;
+    return kNoConvergence;
+  }
+  if (s != kOk) return s;
+  return res.mu2_error <= kBrentRelAccuracy * res.mu2 ? kOk : kInaccurate;
+}
+
+}  // namespace
+
+Status contact_method(int method, Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in,
+                      MethodResult &res) noexcept {
+  res.method = method;
+  res.iterations = 0;
+  if (method < kMethodDefault || method > kMethodRational) {
+    // kMethodZheng is reserved until the distance-of-closest-approach
+    // method is wired in here.
+    res.mu2 = res.lambda = res.mu2_error = std::nan("");
+    return kUnknownMethod;
+  }
+  if (r_in[0] == 0.0 && r_in[1] == 0.0 && r_in[2] == 0.0) {
+    res.mu2 = 0.0;
+    res.lambda = 0.5;
+    res.mu2_error = 0.0;
+    return kOk;
+  }
+  Vec3 r = r_in;
+  Sym3 q1 = q1_in, q2 = q2_in;
+  // Cheap range test first; frexp only for extreme magnitudes.
+  double rmax = 0.0, qmax1 = 0.0, qmax2 = 0.0;
+  for (int i = 0; i < kDim; ++i) rmax = std::fmax(rmax, std::fabs(r[i]));
+  for (int i = 0; i < kSym; ++i) {
+    qmax1 = std::fabs(q1[i]) > qmax1 ? std::fabs(q1[i]) : qmax1;
+    qmax2 = std::fabs(q2[i]) > qmax2 ? std::fabs(q2[i]) : qmax2;
+  }
+  constexpr double kLo = 0x1p-60, kHi = 0x1p60;
+  bool const scale = !(rmax > kLo && rmax < kHi && qmax1 > kLo && qmax1 < kHi &&
+                       qmax2 > kLo && qmax2 < kHi);
+  int er = 0, eq = 0;
+  if (scale) {
+    er = exponent_of_max(r.x, kDim);
+    eq = std::max(exponent_of_max(q1.a, kSym), exponent_of_max(q2.a, kSym));
+    for (int i = 0; i < kDim; ++i) r[i] = std::ldexp(r[i], -er);
+    for (int i = 0; i < kSym; ++i) {
+      q1[i] = std::ldexp(q1[i], -eq);
+      q2[i] = std::ldexp(q2[i], -eq);
+    }
+  }
+  Status s;
+  switch (method) {
+    case kMethodBrent:
+      s = contact_brent_checked(r, q1, q2, res);
+      break;
+    case kMethodNewton:
+      s = contact_newton(r, q1, q2, res);
+      break;
+    case kMethodRational:
+      s = contact_rational(r, q1, q2, res);
+      break;
+    default:
+      res.method = kMethodDefault;
+      s = contact_default(r, q1, q2, res);
+      break;
+  }
+  if (scale) {
+    res.mu2 = std::ldexp(res.mu2, 2 * er - eq);
+    res.mu2_error = std::ldexp(res.mu2_error, 2 * er - eq);
+  }
+  return s;
+}
+
+}  // namespace pw85

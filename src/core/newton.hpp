@@ -1,0 +1,30 @@
+// Internals of newton.cpp shared with default.cpp and methods.cpp.
+#pragma once
+
+#include "f_ldl.hpp"
+#include "sym3.hpp"
+
+namespace pw85 {
+
+// Starting point lambda0 = h1 / (h1 + h2), h_i = (r^T Q_i r)^(1/2)
+// (docs/methods.md, eq. (M7)).
+double newton_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept;
+
+struct NewtonState {
+  FEval e;        // last successful evaluation (e.f untouched if none)
+  double mu2;     // estimate of max f (Taylor-extrapolated from e when step != 0)
+  double lambda;  // estimate of the maximiser (e.lambda + step)
+  double step;    // extrapolation step (0: mu2 = e.f)
+  double trunc;   // size of the last Taylor term used
+};
+
+// Safeguarded Halley iteration on f' from lambda, bracket [0, 1]; d = Q2 - Q1.
+// Returns true when the stopping test (eq. (M9)) was met.
+bool newton_iterate(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Sym3 const &d,
+                    double lambda, NewtonState &st, int &iterations) noexcept;
+
+// Estimate of |st.mu2 - max f| (eq. (M10)).
+double newton_error(NewtonState const &st, Vec3 const &r, Sym3 const &q1,
+                    Sym3 const &q2) noexcept;
+
+}  // namespace pw85
