@@ -1,0 +1,124 @@
+// extern "C" layer of the distance-of-closest-approach functions
+// (include/pw85.h; core in src/core/dca_2d.cpp, contact_2d.cpp, dca_3d.cpp):
+// validate, normalise the direction, call the core, map to a status code.
+#include <cmath>
+
+#include "pw85.h"
+#include "../core/contact.hpp"
+#include "../core/dca.hpp"
+#include "../core/status.hpp"
+#include "../core/sym2.hpp"
+#include "../core/sym3.hpp"
+#include "validate.hpp"
+
+static_assert(pw85::kDcaMaxEval == PW85_DCA_MAX_EVAL, "must match pw85.h");
+static_assert(pw85::kDcaThetaTol == PW85_DCA_THETA_TOL, "must match pw85.h");
+
+namespace {
+
+using pw85::capi::fill_nan;
+
+// Finite, non-zero direction: writes u / |u| (scaled first by a power of two
+// so that |u| neither overflows nor underflows).
+template <int N>
+bool normalise(double const *u, double *out) noexcept {
+  double m = 0.0;
+  for (int i = 0; i < N; ++i) m = std::fmax(m, std::fabs(u[i]));
+  if (!(m > 0.0)) return false;
+  int e;
+  std::frexp(m, &e);
+  double n2 = 0.0;
+  for (int i = 0; i < N; ++i) {
+    out[i] = std::ldexp(u[i], -e);
+    n2 += out[i] * out[i];
+  }
+  double const inv = 1.0 / std::sqrt(n2);
+  for (int i = 0; i < N; ++i) out[i] *= inv;
+  return true;
+}
+
+// A pair of ellipses: r finite, q1 and q2 finite and positive definite.
+pw85::Status validate_pair_2d(double const *r, double const *q1, double const *q2) noexcept {
+  if (r == nullptr || q1 == nullptr || q2 == nullptr) return pw85::kInvalidArgument;
+  if (!pw85::all_finite(r, 2) || !pw85::all_finite(q1, 3) || !pw85::all_finite(q2, 3))
+    return pw85::kInvalidArgument;
+  if (!pw85::is_positive_definite(pw85::load_sym2(q1)) ||
+      !pw85::is_positive_definite(pw85::load_sym2(q2)))
+    return pw85::kNotSpd;
+  return pw85::kOk;
+}
+
+int dca_zheng_checked(double const u[3], double const q1[6], double const q2[6],
+                      double theta_tol, double *d, int *evaluations) {
+  if (evaluations != nullptr) *evaluations = 0;
+  if (d == nullptr) return PW85_ERR_INVALID_ARGUMENT;
+  *d = std::nan("");
+  int const status = pw85::capi::validate_pair(u, q1, q2);
+  if (status != PW85_OK) return status;
+  if (!std::isfinite(theta_tol) || theta_tol < 0.0) return PW85_ERR_INVALID_ARGUMENT;
+  pw85::Vec3 un;
+  if (!normalise<3>(u, un.x)) return PW85_ERR_INVALID_ARGUMENT;
+  if (theta_tol == 0.0) theta_tol = PW85_DCA_THETA_TOL;
+  pw85::DcaResult res;
+  int const s = pw85::dca_zheng(un, pw85::load_sym3(q1), pw85::load_sym3(q2), theta_tol,
+                                PW85_DCA_MAX_EVAL, res);
+  if (evaluations != nullptr) *evaluations = res.evaluations;
+  *d = res.d;
+  return s;
+}
+
+}  // namespace
+
+extern "C" {
+
+int pw85_dca_2d(double const u[2], double const q1[3], double const q2[3], double *d) {
+  if (d == nullptr) return PW85_ERR_INVALID_ARGUMENT;
+  *d = std::nan("");
+  int const status = validate_pair_2d(u, q1, q2);
+  if (status != PW85_OK) return status;
+  pw85::Vec2 un;
+  if (!normalise<2>(u, un.x)) return PW85_ERR_INVALID_ARGUMENT;
+  pw85::Dca2dResult res;
+  int const s = pw85::dca_2d(un, pw85::load_sym2(q1), pw85::load_sym2(q2), res);
+  if (s != PW85_OK && s != PW85_ERR_NO_CONVERGENCE) return s;
+  *d = res.d;
+  return s;
+}
+
+int pw85_contact_function_2d(double const r12[2], double const q1[3], double const q2[3],
+                             double out[2]) {
+  if (out == nullptr) return PW85_ERR_INVALID_ARGUMENT;
+  int const status = validate_pair_2d(r12, q1, q2);
+  if (status != PW85_OK) {
+    fill_nan(out, 2);
+    return status;
+  }
+  int iterations;
+  return pw85::contact_function_2d(pw85::load_vec2(r12), pw85::load_sym2(q1),
+                                   pw85::load_sym2(q2), out[0], out[1], iterations);
+}
+
+int pw85_dca(double const u[3], double const q1[6], double const q2[6], int method,
+             double *d) {
+  if (method == PW85_METHOD_ZHENG) return dca_zheng_checked(u, q1, q2, 0.0, d, nullptr);
+  if (d == nullptr) return PW85_ERR_INVALID_ARGUMENT;
+  *d = std::nan("");
+  if (method != PW85_METHOD_DEFAULT && method != PW85_METHOD_BRENT)
+    return PW85_ERR_UNKNOWN_METHOD;
+  int const status = pw85::capi::validate_pair(u, q1, q2);
+  if (status != PW85_OK) return status;
+  pw85::Vec3 un;
+  if (!normalise<3>(u, un.x)) return PW85_ERR_INVALID_ARGUMENT;
+  // d = 1 / sqrt(F(u)), F homogeneous of degree 2 in r12.
+  pw85::ContactResult res;
+  int const s = pw85::contact_brent(un, pw85::load_sym3(q1), pw85::load_sym3(q2), res);
+  *d = 1.0 / std::sqrt(res.mu2);
+  return s;
+}
+
+int pw85_dca_ex(double const u[3], double const q1[6], double const q2[6], double theta_tol,
+                double *d, int *evaluations) {
+  return dca_zheng_checked(u, q1, q2, theta_tol, d, evaluations);
+}
+
+}  // extern "C"
