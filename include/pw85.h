@@ -232,6 +232,59 @@ PW85_API int pw85_dca_ex(double const u[PW85_DIM], double const q1[PW85_SYM],
                          double const q2[PW85_SYM], double theta_tol,
                          double *d, int *evaluations);
 
+/* ---- Method-selecting contact function (issue 7) ------------------------
+ * Methods of pw85_contact_function_method(); the values are pinned (ABI).
+ * Their formulas, cost and accuracy are in docs/methods.md. */
+/* The recommended method: Halley iteration in double, re-evaluated in
+ * double-double when its error estimate exceeds 4e-15 mu2. Documented
+ * relative accuracy of mu2: 1e-14. */
+#define PW85_METHOD_DEFAULT 0
+/* pw85 1.0's algorithm, what pw85_contact_function() computes (Brent, then
+ * Newton on the residual). Documented relative accuracy: 1e-10. */
+#define PW85_METHOD_BRENT 1
+/* Safeguarded Halley iteration on f' = -g bracketed in [0, 1], f and its
+ * derivatives in double through LDL^T of Q(lambda). Documented relative
+ * accuracy: 1e-12. */
+#define PW85_METHOD_NEWTON 2
+/* Rational-fraction formulation f = l (1 - l) a(l) / b(l), coefficients of
+ * a and b computed once per pair in double. Documented relative accuracy:
+ * 1e-12. */
+#define PW85_METHOD_RATIONAL 3
+/* Reserved for the distance-of-closest-approach method (Zheng et al.);
+ * PW85_ERR_UNKNOWN_METHOD until it is implemented. */
+#define PW85_METHOD_ZHENG 4
+
+/* Result of pw85_contact_function_method(). A plain struct of C types, so
+ * that Fortran can mirror it with type, bind(c). */
+typedef struct pw85_result {
+  double mu2;       /* contact function mu^2 (0 when r12 = 0) */
+  double lambda;    /* maximiser of f on [0, 1] (0.5 when r12 = 0) */
+  double mu2_error; /* estimate of the absolute error on mu2 */
+  int iterations;   /* iterations of the method (method-specific meaning) */
+  int method;       /* method actually used (a PW85_METHOD_* value; DEFAULT
+                       for PW85_METHOD_DEFAULT) */
+} pw85_result;
+
+/* Contact function of two ellipsoids by a chosen method (PW85_METHOD_*).
+ * r12 = c2 - c1, q1 and q2 the quadratic forms (as pw85_contact_function()).
+ * Writes every field of *res. Returns
+ *   PW85_OK                    mu2 is within the method's documented accuracy
+ *                              (according to its error estimate mu2_error);
+ *   PW85_ERR_INACCURATE        result written, but mu2_error exceeds the
+ *                              documented relative accuracy times mu2;
+ *   PW85_ERR_NO_CONVERGENCE    the iteration stopped early; best estimate
+ *                              written (finite);
+ *   PW85_ERR_INVALID_ARGUMENT  NULL pointer, NaN or infinite value;
+ *   PW85_ERR_NOT_SPD           q1 or q2 not positive definite;
+ *   PW85_ERR_UNKNOWN_METHOD    method is not a PW85_METHOD_* value or not
+ *                              implemented (PW85_METHOD_ZHENG for now).
+ * On the last three errors mu2, lambda and mu2_error are NaN and iterations
+ * is 0 (nothing is written when res is NULL). Never allocates. */
+PW85_API int pw85_contact_function_method(double const r12[PW85_DIM],
+                                          double const q1[PW85_SYM],
+                                          double const q2[PW85_SYM], int method,
+                                          pw85_result *res);
+
 PW85_END_DECLS
 
 #endif /* PW85_H */
