@@ -285,6 +285,75 @@ PW85_API int pw85_contact_function_method(double const r12[PW85_DIM],
                                           double const q2[PW85_SYM], int method,
                                           pw85_result *res);
 
+/* ---- Overlap, contact geometry and batch calls over a scene (issue 6) ------
+ * docs/overlap.md, docs/contact_geometry.md, docs/batch.md. */
+
+/* Exact overlap predicate. Returns 1 when the interiors of the two
+ * ellipsoids intersect (mu^2 < 1), 0 when they do not (mu^2 >= 1; external
+ * tangency counts as not overlapping). The verdict is exact for the doubles
+ * given, however close to tangency: floating-point filters with rigorous
+ * error bounds decide almost every pair, the rest is decided by a Sturm
+ * sequence in exact integer arithmetic (no heap allocation). r12 = 0 gives 1.
+ * Returns a negative status on error: PW85_ERR_INVALID_ARGUMENT (NULL, NaN,
+ * infinity), PW85_ERR_NOT_SPD (q1 or q2 not positive definite, in floating
+ * point or, for the pairs reaching the exact stage, exactly) or
+ * PW85_ERR_INACCURATE (exact stage out of capacity: only for matrices whose
+ * entries span more than about 2^300 in magnitude, docs/overlap.md). */
+PW85_API int pw85_overlap(double const r12[PW85_DIM], double const q1[PW85_SYM],
+                          double const q2[PW85_SYM]);
+
+/* Contact geometry of two ellipsoids (docs/contact_geometry.md). A plain
+ * struct of doubles, mirrored in Fortran by type(pw85_contact_t), bind(c). */
+typedef struct pw85_contact_t {
+  double mu2;     /* contact function mu^2 */
+  double lambda;  /* maximiser of f on [0, 1] */
+  double x0[3];   /* contact point of the two ellipsoids scaled by mu,
+                     relative to centre 1: (1 - lambda) Q1 Q^{-1} r12 */
+  double n[3];    /* unit common normal at x0, pointing from 1 towards 2 */
+  double dca;     /* distance of closest approach along r12: |r12| / mu */
+  double depth;   /* overlap depth along r12: dca - |r12| (> 0: overlap) */
+  double depth_n; /* depth projected on the normal: depth (r12/|r12|) . n */
+} pw85_contact_t;
+
+/* Fills *c for the pair (r12 = c2 - c1, q1, q2). Returns PW85_OK,
+ * PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity, or r12 = 0 where the
+ * geometry is undefined), PW85_ERR_NOT_SPD, or PW85_ERR_NO_CONVERGENCE (the
+ * contact-function solve did not converge; estimates still written). On the
+ * first two errors every field of *c is NaN (when c is not NULL). */
+PW85_API int pw85_contact(double const r12[PW85_DIM], double const q1[PW85_SYM],
+                          double const q2[PW85_SYM], pw85_contact_t *c);
+
+/* Batch calls over a scene of n ellipsoids: centres[3i..3i+2] and
+ * q[6i..6i+5] are the centre and quadratic form of ellipsoid i; pairs holds
+ * m index pairs (pairs[2k], pairs[2k+1]) = (i, j), and pair k is computed
+ * with r12 = c_j - c_i (rounded to double) exactly as the one-pair function
+ * does, so the results are identical to it and independent of the number of
+ * threads. nthreads: number of OpenMP threads (0: the OpenMP default; the
+ * process-wide OpenMP settings are never changed; ignored without OpenMP).
+ * status (may be NULL) receives the status of each pair (an index >= n gives
+ * PW85_ERR_INVALID_ARGUMENT for that pair, as does a negative index). Each returns PW85_OK when every
+ * pair succeeded, else the status of the first failing pair (lowest k), or
+ * PW85_ERR_INVALID_ARGUMENT with nothing written when a required pointer is
+ * NULL, n < 0, m < 0 or nthreads < 0 (m = 0: nothing to do, PW85_OK).
+ * Indices and counts are long long (64-bit), so that the header needs no
+ * other header and Fortran passes integer(c_long_long). */
+
+/* overlap[k] = pw85_overlap() of pair k (1, 0, or a negative status). */
+PW85_API int pw85_overlap_batch(long long n, double const *centres, double const *q,
+                                long long m, long long const *pairs, int *overlap,
+                                int *status, int nthreads);
+
+/* out[2k], out[2k+1] = mu^2, lambda of pair k, as pw85_contact_function(). */
+PW85_API int pw85_contact_function_batch(long long n, double const *centres,
+                                         double const *q, long long m,
+                                         long long const *pairs, double *out,
+                                         int *status, int nthreads);
+
+/* c[k] = pw85_contact() of pair k. */
+PW85_API int pw85_contact_batch(long long n, double const *centres, double const *q,
+                                long long m, long long const *pairs, pw85_contact_t *c,
+                                int *status, int nthreads);
+
 PW85_END_DECLS
 
 #endif /* PW85_H */

@@ -1,0 +1,190 @@
+// extern "C" layer of the scene API (issue 6): pw85_overlap, pw85_contact and
+// the batch calls over index pairs of a scene. Validation and status mapping
+// only; the work is in src/core/overlap.cpp, overlap_exact.cpp and
+// contact_geometry.cpp. The batch loops are parallelised with OpenMP when the
+// library is built with it; each pair is computed by exactly the code of the
+// one-pair function, so results do not depend on the number of threads.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "pw85.h"
+#include "../core/contact.hpp"
+#include "../core/contact_geometry.hpp"
+#include "../core/overlap.hpp"
+#include "../core/sym3.hpp"
+#include "validate.hpp"
+
+using pw85::capi::fill_nan;
+
+namespace {
+
+void fill_nan_contact(pw85_contact_t *c) noexcept {
+  fill_nan(&c->mu2, 1);
+  fill_nan(&c->lambda, 1);
+  fill_nan(c->x0, 3);
+  fill_nan(c->n, 3);
+  fill_nan(&c->dca, 1);
+  fill_nan(&c->depth, 1);
+  fill_nan(&c->depth_n, 1);
+}
+
+// r12 = c_j - c_i (rounded to double: the batch functions decide for this
+// r12, exactly as the one-pair functions would).
+inline bool pair_r12(long long n, double const *centres, long long const *pairs,
+                     long long k, double r12[3], long long &i, long long &j) noexcept {
+  i = pairs[2 * k];
+  j = pairs[2 * k + 1];
+  if (i < 0 || j < 0 || i >= n || j >= n) return false;
+  for (int d = 0; d < 3; ++d) r12[d] = centres[3 * j + d] - centres[3 * i + d];
+  return true;
+}
+
+inline int threads_of(int nthreads) noexcept {
+#ifdef _OPENMP
+  return nthreads > 0 ? nthreads : omp_get_max_threads();
+#else
+  (void)nthreads;
+  return 1;
+#endif
+}
+
+}  // namespace
+
+extern "C" {
+
+int pw85_overlap(double const r12[PW85_DIM], double const q1[PW85_SYM],
+                 double const q2[PW85_SYM]) {
+  int const status = pw85::capi::validate_pair(r12, q1, q2);
+  if (status != PW85_OK) return status;
+  int verdict = -1;
+  int const s = pw85::overlap(pw85::load_vec3(r12), pw85::load_sym3(q1),
+                              pw85::load_sym3(q2), verdict);
+  return s == PW85_OK ? verdict : s;
+}
+
+int pw85_contact(double const r12[PW85_DIM], double const q1[PW85_SYM],
+                 double const q2[PW85_SYM], pw85_contact_t *c) {
+  if (c == nullptr) return PW85_ERR_INVALID_ARGUMENT;
+  int const status = pw85::capi::validate_pair(r12, q1, q2);
+  if (status != PW85_OK) {
+    fill_nan_contact(c);
+    return status;
+  }
+  if (r12[0] == 0.0 && r12[1] == 0.0 && r12[2] == 0.0) {
+    fill_nan_contact(c);
+    return PW85_ERR_INVALID_ARGUMENT;
+  }
+  pw85::ContactGeometry g;
+  int const s = pw85::contact_geometry(pw85::load_vec3(r12), pw85::load_sym3(q1),
+                                       pw85::load_sym3(q2), g);
+  if (s != PW85_OK && s != PW85_ERR_NO_CONVERGENCE && s != PW85_ERR_INACCURATE) {
+    fill_nan_contact(c);
+    return s;
+  }
+  c->mu2 = g.mu2;
+  c->lambda = g.lambda;
+  for (int d = 0; d < 3; ++d) {
+    c->x0[d] = g.x0[d];
+    c->n[d] = g.n[d];
+  }
+  c->dca = g.dca;
+  c->depth = g.depth;
+  c->depth_n = g.depth_n;
+  return s;
+}
+
+int pw85_overlap_batch(long long n, double const *centres, double const *q, long long m,
+                       long long const *pairs, int *overlap, int *status, int nthreads) {
+  if (m == 0) return PW85_OK;
+  if (n < 0 || m < 0 || centres == nullptr || q == nullptr || pairs == nullptr || overlap == nullptr ||
+      nthreads < 0)
+    return PW85_ERR_INVALID_ARGUMENT;
+  long long const mm = m;
+  long long first_bad = mm;
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads_of(nthreads)) \
+    reduction(min : first_bad)
+  for (long long k = 0; k < mm; ++k) {
+    double r12[3];
+    long long i, j;
+    int res;
+    if (!pair_r12(n, centres, pairs, k, r12, i, j))
+      res = PW85_ERR_INVALID_ARGUMENT;
+    else
+      res = pw85_overlap(r12, q + 6 * i, q + 6 * j);
+    overlap[k] = res;
+    if (status != nullptr) status[k] = res < 0 ? res : PW85_OK;
+    if (res < 0 && k < first_bad) first_bad = k;
+  }
+  return first_bad == mm ? PW85_OK : overlap[first_bad];
+}
+
+int pw85_contact_function_batch(long long n, double const *centres, double const *q,
+                                long long m, long long const *pairs, double *out, int *status,
+                                int nthreads) {
+  if (m == 0) return PW85_OK;
+  if (n < 0 || m < 0 || centres == nullptr || q == nullptr || pairs == nullptr || out == nullptr ||
+      nthreads < 0)
+    return PW85_ERR_INVALID_ARGUMENT;
+  long long const mm = m;
+  long long first_bad = mm;
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads_of(nthreads)) \
+    reduction(min : first_bad)
+  for (long long k = 0; k < mm; ++k) {
+    double r12[3];
+    long long i, j;
+    int res;
+    if (!pair_r12(n, centres, pairs, k, r12, i, j)) {
+      res = PW85_ERR_INVALID_ARGUMENT;
+      fill_nan(out + 2 * k, 2);
+    } else {
+      res = pw85_contact_function(r12, q + 6 * i, q + 6 * j, out + 2 * k);
+    }
+    if (status != nullptr) status[k] = res;
+    if (res != PW85_OK && k < first_bad) first_bad = k;
+  }
+  if (first_bad == mm) return PW85_OK;
+  // Recompute the status of the first failing pair (deterministic, cheap).
+  double r12[3], tmp[2];
+  long long i, j;
+  if (!pair_r12(n, centres, pairs, first_bad, r12, i, j))
+    return PW85_ERR_INVALID_ARGUMENT;
+  return pw85_contact_function(r12, q + 6 * i, q + 6 * j, tmp);
+}
+
+int pw85_contact_batch(long long n, double const *centres, double const *q, long long m,
+                       long long const *pairs, pw85_contact_t *c, int *status, int nthreads) {
+  if (m == 0) return PW85_OK;
+  if (n < 0 || m < 0 || centres == nullptr || q == nullptr || pairs == nullptr || c == nullptr ||
+      nthreads < 0)
+    return PW85_ERR_INVALID_ARGUMENT;
+  long long const mm = m;
+  long long first_bad = mm;
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads_of(nthreads)) \
+    reduction(min : first_bad)
+  for (long long k = 0; k < mm; ++k) {
+    double r12[3];
+    long long i, j;
+    int res;
+    if (!pair_r12(n, centres, pairs, k, r12, i, j)) {
+      res = PW85_ERR_INVALID_ARGUMENT;
+      fill_nan_contact(c + k);
+    } else {
+      res = pw85_contact(r12, q + 6 * i, q + 6 * j, c + k);
+    }
+    if (status != nullptr) status[k] = res;
+    if (res != PW85_OK && k < first_bad) first_bad = k;
+  }
+  if (first_bad == mm) return PW85_OK;
+  double r12[3];
+  long long i, j;
+  pw85_contact_t tmp;
+  if (!pair_r12(n, centres, pairs, first_bad, r12, i, j))
+    return PW85_ERR_INVALID_ARGUMENT;
+  return pw85_contact(r12, q + 6 * i, q + 6 * j, &tmp);
+}
+
+}  // extern "C"

@@ -1,0 +1,41 @@
+// Exact overlap predicate of two ellipsoids (docs/overlap.md).
+//
+// overlap() decides whether the interiors of the ellipsoids
+//     E1 = {x : x^T Q1^{-1} x <= 1},  E2 = {x : (x - r)^T Q2^{-1} (x - r) <= 1}
+// intersect, i.e. whether mu^2 < 1 (pw85 documentation, chapter 3, eq. (6)),
+// exactly for the doubles given: floating-point filters whose verdicts carry
+// rigorous error bounds, then, for the pairs they cannot decide, a Sturm
+// sequence of the quartic
+//     p(lambda) = det Q(lambda) - lambda (1 - lambda) r^T adj Q(lambda) r
+// in exact integer arithmetic (overlap_exact.cpp).
+//
+// Preconditions, checked by the C layer: r, q1, q2 finite; q1, q2 positive
+// definite in floating point (the exact stage re-checks positive
+// definiteness exactly and returns kNotSpd if it fails).
+#pragma once
+
+#include "status.hpp"
+#include "sym3.hpp"
+
+namespace pw85 {
+
+// Stage that decided a verdict (for benchmarks and tests of the filters).
+enum OverlapStage : int {
+  kStageTrivial = 0,   // r = 0
+  kStageSpheres = 1,   // bounding / inscribed spheres
+  kStageFilter = 2,    // certificate in double precision at lambda*
+  kStageExact = 3,     // Sturm sequence in exact integer arithmetic
+};
+
+// verdict = 1 (interiors intersect, mu^2 < 1) or 0 (mu^2 >= 1). Returns kOk,
+// kNotSpd (exact check) or kInaccurate (the exact stage ran out of its fixed
+// capacity: exponent spread of the inputs larger than documented); on error
+// verdict is left unchanged. stage (may be null) receives the deciding stage.
+Status overlap(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &verdict,
+               int *stage = nullptr) noexcept;
+
+// The exact stage alone (no filter): same contract as overlap().
+Status overlap_exact(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                     int &verdict) noexcept;
+
+}  // namespace pw85

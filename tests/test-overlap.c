@@ -1,0 +1,174 @@
+/* Tests of pw85_overlap (issue 6): verdicts against the high-precision
+ * reference data (mu2 computed in exact rational arithmetic from the stored
+ * doubles), exact tangency constructed with exactly representable contact,
+ * bad input. */
+#include <float.h>
+#include <math.h>
+#include <pw85.h>
+
+#include "refgroup.h"
+#include "testutil.h"
+
+/* Zero wrong verdicts on a reference group; *exact_side counts pairs whose
+ * stored mu2 is within 1e-6 of 1 (to show the group exercises the hard
+ * cases). */
+static void check_group(const char *name, double min_gap) {
+  ref_group g;
+  if (!ref_group_load(name, &g)) return;
+  size_t wrong = 0, hard = 0, used = 0;
+  for (size_t i = 0; i < g.n; i++) {
+    double const mu2 = g.mu2[i];
+    /* The stored double is the correctly rounded mu2: its side of 1 is the
+     * true side unless it rounds to exactly 1. */
+    if (mu2 == 1.0 || fabs(mu2 - 1.0) < min_gap) continue;
+    used++;
+    if (fabs(mu2 - 1.0) < 1e-6) hard++;
+    int const v = pw85_overlap(g.r12 + 3 * i, g.q1 + 6 * i, g.q2 + 6 * i);
+    g_assert_cmpint(v, >=, 0);
+    if (v != (mu2 < 1.0 ? 1 : 0)) {
+      wrong++;
+      g_test_message("%s row %zu: mu2 = %.17g, verdict %d", name, i, mu2, v);
+    }
+  }
+  g_test_message("%s: %zu pairs, %zu with |mu2 - 1| < 1e-6, %zu wrong", name, used, hard,
+                 wrong);
+  g_assert_cmpuint(wrong, ==, 0);
+  g_assert_cmpuint(used, >, g.n / 2);
+  ref_group_free(&g);
+}
+
+static void test_reference_near_contact(void) { check_group("/near_contact", 0.0); }
+static void test_reference_contact(void) { check_group("/contact", 0.0); }
+static void test_reference_special(void) { check_group("/special", 0.0); }
+
+static void sphere_q(double a, double q[6]) {
+  q[0] = q[3] = q[5] = a * a;
+  q[1] = q[2] = q[4] = 0.0;
+}
+
+/* Spheres of radii 1.5 and 1, centres at distance exactly 2.5 along
+ * (3/5, 4/5, 0): r12 = (1.5, 2, 0). Tangent: 0; one ulp closer: 1. */
+static void test_tangent_spheres(void) {
+  double q1[6], q2[6];
+  sphere_q(1.5, q1);
+  sphere_q(1.0, q2);
+  double r[3] = {1.5, 2.0, 0.0};
+  g_assert_cmpint(pw85_overlap(r, q1, q2), ==, 0);
+  double closer[3] = {nextafter(1.5, 0.0), 2.0, 0.0};
+  g_assert_cmpint(pw85_overlap(closer, q1, q2), ==, 1);
+  double farther[3] = {nextafter(1.5, 2.0), 2.0, 0.0};
+  g_assert_cmpint(pw85_overlap(farther, q1, q2), ==, 0);
+  /* Swapping the ellipsoids (r12 -> -r12) does not change the verdicts. */
+  double mr[3] = {-1.5, -2.0, -0.0};
+  g_assert_cmpint(pw85_overlap(mr, q2, q1), ==, 0);
+  double mcloser[3] = {-nextafter(1.5, 0.0), -2.0, 0.0};
+  g_assert_cmpint(pw85_overlap(mcloser, q2, q1), ==, 1);
+}
+
+/* Radii 1 and 2 along x (lambda* = 1/3 is not a double): tangent at 3. */
+static void test_tangent_spheres_irrational_lambda(void) {
+  double q1[6], q2[6];
+  sphere_q(1.0, q1);
+  sphere_q(2.0, q2);
+  double r[3] = {3.0, 0.0, 0.0};
+  g_assert_cmpint(pw85_overlap(r, q1, q2), ==, 0);
+  r[0] = nextafter(3.0, 0.0);
+  g_assert_cmpint(pw85_overlap(r, q1, q2), ==, 1);
+  r[0] = nextafter(3.0, 4.0);
+  g_assert_cmpint(pw85_overlap(r, q1, q2), ==, 0);
+}
+
+/* Ellipsoids with axes along x, y, z, centres on an axis: the tips touch at
+ * |r12| = sum of the semi-axes along it and the plane through the tips
+ * separates them, so this is exact external tangency. Extreme aspect ratios
+ * included. */
+static void test_tangent_aligned(void) {
+  static const double semi[][6] = {
+      {2.0, 1.0, 0.5, 1.0, 3.0, 2.0},
+      {0x1p-10, 1024.0, 1.0, 1024.0, 0x1p-10, 0.5},
+      {1024.0, 0x1p-10, 0x1p-10, 0x1p-10, 1024.0, 1024.0},
+      {0.75, 0.25, 4.0, 0.125, 8.0, 0.5},
+  };
+  for (size_t c = 0; c < G_N_ELEMENTS(semi); c++) {
+    double q1[6] = {semi[c][0] * semi[c][0], 0, 0, semi[c][1] * semi[c][1], 0,
+                    semi[c][2] * semi[c][2]};
+    double q2[6] = {semi[c][3] * semi[c][3], 0, 0, semi[c][4] * semi[c][4], 0,
+                    semi[c][5] * semi[c][5]};
+    for (int axis = 0; axis < 3; axis++) {
+      double const a = semi[c][axis], b = semi[c][3 + axis];
+      double d = a + b;
+      /* The sum and the squares are exact doubles (two-sum, fma). */
+      double const bb = d - a;
+      g_assert_cmpfloat((a - (d - bb)) + (b - bb), ==, 0.0);
+      g_assert_cmpfloat(fma(a, a, -(a * a)), ==, 0.0);
+      g_assert_cmpfloat(fma(b, b, -(b * b)), ==, 0.0);
+      double r[3] = {0, 0, 0};
+      r[axis] = d;
+      g_assert_cmpint(pw85_overlap(r, q1, q2), ==, 0);
+      r[axis] = nextafter(d, 0.0);
+      g_assert_cmpint(pw85_overlap(r, q1, q2), ==, 1);
+      r[axis] = nextafter(d, 2 * d);
+      g_assert_cmpint(pw85_overlap(r, q1, q2), ==, 0);
+      r[axis] = -d;
+      g_assert_cmpint(pw85_overlap(r, q1, q2), ==, 0);
+    }
+  }
+}
+
+/* Far apart / deep overlap / coincident centres, against a long-double
+ * golden-section reference away from tangency. */
+static void test_random_clear(void) {
+  GRand *rng = g_rand_new_with_seed(6006);
+  static const double range[4][2] = {{0.5, 2}, {0.1, 10}, {0.01, 100}, {0.001, 1000}};
+  int checked = 0;
+  for (int c = 0; c < 4; c++)
+    for (int k = 0; k < 300; k++) {
+      double rad[3], ax[9], q1[6], q2[6], r[3];
+      random_radii(rng, range[c][0], range[c][1], rad);
+      random_axes(rng, ax);
+      make_q(rad, ax, q1);
+      random_radii(rng, range[c][0], range[c][1], rad);
+      random_axes(rng, ax);
+      make_q(rad, ax, q2);
+      double scale = exp(g_rand_double_range(rng, log(1e-3), log(1e3)));
+      for (int i = 0; i < 3; i++) r[i] = scale * g_rand_double_range(rng, -1, 1);
+      long double lam;
+      long double mu2 = mu2_ld(r, q1, q2, &lam);
+      if (fabsl(mu2 - 1.0L) < 1e-6L * (1 + mu2)) continue;
+      g_assert_cmpint(pw85_overlap(r, q1, q2), ==, mu2 < 1.0L ? 1 : 0);
+      checked++;
+    }
+  g_assert_cmpint(checked, >, 1000);
+  double q[6] = {1, 0, 0, 1, 0, 1}, zero[3] = {0, 0, 0};
+  g_assert_cmpint(pw85_overlap(zero, q, q), ==, 1);
+  g_rand_free(rng);
+}
+
+static void test_bad_input(void) {
+  double q[6] = {1, 0, 0, 1, 0, 1}, r[3] = {1, 0, 0};
+  double notspd[6] = {1, 2, 0, 1, 0, 1};
+  double nanq[6] = {1, 0, 0, NAN, 0, 1};
+  double infr[3] = {INFINITY, 0, 0};
+  g_assert_cmpint(pw85_overlap(NULL, q, q), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_overlap(r, NULL, q), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_overlap(r, q, NULL), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_overlap(r, nanq, q), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_overlap(infr, q, q), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_overlap(r, q, notspd), ==, PW85_ERR_NOT_SPD);
+  double neg[6] = {-1, 0, 0, 1, 0, 1};
+  g_assert_cmpint(pw85_overlap(r, neg, q), ==, PW85_ERR_NOT_SPD);
+}
+
+int main(int argc, char **argv) {
+  g_test_init(&argc, &argv, NULL);
+  g_test_add_func("/overlap/reference/near_contact", test_reference_near_contact);
+  g_test_add_func("/overlap/reference/contact", test_reference_contact);
+  g_test_add_func("/overlap/reference/special", test_reference_special);
+  g_test_add_func("/overlap/tangent/spheres", test_tangent_spheres);
+  g_test_add_func("/overlap/tangent/spheres-irrational-lambda",
+                  test_tangent_spheres_irrational_lambda);
+  g_test_add_func("/overlap/tangent/aligned-axes", test_tangent_aligned);
+  g_test_add_func("/overlap/random/clear-cases", test_random_clear);
+  g_test_add_func("/overlap/bad-input", test_bad_input);
+  return g_test_run();
+}
