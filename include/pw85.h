@@ -214,11 +214,12 @@ PW85_API int pw85_contact_function_2d(double const r12[2], double const q1[3],
  *  - PW85_METHOD_ZHENG: rotation of a plane through the line of centres, the
  *    2D problem of the two sections solved as by pw85_dca_2d (Zheng,
  *    Iglesias & Palffy-Muhoray, 2008), tolerance PW85_DCA_THETA_TOL;
- *  - PW85_METHOD_DEFAULT, PW85_METHOD_BRENT: d = 1 / sqrt(F(u / |u|)), F by
- *    pw85_contact_function.
+ *  - any other method of pw85_contact_function_method (PW85_METHOD_DEFAULT,
+ *    PW85_METHOD_BRENT, ...): d = 1 / sqrt(F(u / |u|)), F by that method.
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity, u = 0),
- * PW85_ERR_NOT_SPD, PW85_ERR_UNKNOWN_METHOD or PW85_ERR_NO_CONVERGENCE (the
- * estimate is still written). */
+ * PW85_ERR_NOT_SPD, PW85_ERR_UNKNOWN_METHOD, or, with *d still written,
+ * PW85_ERR_NO_CONVERGENCE or PW85_ERR_INACCURATE (as returned by
+ * pw85_contact_function_method for the contact-function methods). */
 PW85_API int pw85_dca(double const u[PW85_DIM], double const q1[PW85_SYM],
                       double const q2[PW85_SYM], int method, double *d);
 

@@ -103,15 +103,15 @@ int pw85_dca(double const u[3], double const q1[6], double const q2[6], int meth
   if (method == PW85_METHOD_ZHENG) return dca_zheng_checked(u, q1, q2, 0.0, d, nullptr);
   if (d == nullptr) return PW85_ERR_INVALID_ARGUMENT;
   *d = std::nan("");
-  if (method != PW85_METHOD_DEFAULT && method != PW85_METHOD_BRENT)
-    return PW85_ERR_UNKNOWN_METHOD;
   int const status = pw85::capi::validate_pair(u, q1, q2);
   if (status != PW85_OK) return status;
   pw85::Vec3 un;
   if (!normalise<3>(u, un.x)) return PW85_ERR_INVALID_ARGUMENT;
-  // d = 1 / sqrt(F(u)), F homogeneous of degree 2 in r12.
-  pw85::ContactResult res;
-  int const s = pw85::contact_brent(un, pw85::load_sym3(q1), pw85::load_sym3(q2), res);
+  // d = 1 / sqrt(F(u)), F homogeneous of degree 2 in r12, F by the method
+  // of pw85_contact_function_method.
+  pw85::MethodResult res;
+  int const s = pw85::contact_method(method, un, pw85::load_sym3(q1), pw85::load_sym3(q2), res);
+  if (s == PW85_ERR_UNKNOWN_METHOD) return s;
   *d = 1.0 / std::sqrt(res.mu2);
   return s;
 }

@@ -69,4 +69,17 @@ Status dca_zheng(Vec3 const &u, Sym3 const &q1, Sym3 const &q2, double theta_tol
 Status contact_zheng(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                      ContactResult &res) noexcept;
 
+// Documented relative accuracy of mu2 by the plane-rotation method for pair
+// aspect ratios up to 100 (docs/dca.md); PW85_METHOD_ZHENG of
+// pw85_contact_function_method returns kInaccurate beyond it.
+constexpr double kZhengRelAccuracy = 1e-9;
+
+// PW85_METHOD_ZHENG of pw85_contact_function_method (called by
+// contact_method, methods.cpp): contact_zheng, plus the error estimate
+// mu2_error = |mu2 - f(lambda)|, f evaluated at the recovered lambda through
+// a Cholesky factorisation of Q(lambda) (docs/dca.md, eq. (D13)). Returns
+// kOk, kNoConvergence, or kInaccurate when mu2_error > kZhengRelAccuracy mu2.
+Status contact_zheng_method(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                            MethodResult &res) noexcept;
+
 }  // namespace pw85

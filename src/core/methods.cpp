@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "contact.hpp"
+#include "dca.hpp"
 #include "newton.hpp"
 
 namespace pw85 {
@@ -56,9 +57,7 @@ Status contact_method(int method, Vec3 const &r_in, Sym3 const &q1_in, Sym3 cons
                       MethodResult &res) noexcept {
   res.method = method;
   res.iterations = 0;
-  if (method < kMethodDefault || method > kMethodRational) {
-    // kMethodZheng is reserved until the distance-of-closest-approach
-    // method is wired in here.
+  if (method < kMethodDefault || method > kMethodZheng) {
     res.mu2 = res.lambda = res.mu2_error = std::nan("");
     return kUnknownMethod;
   }
@@ -100,6 +99,9 @@ Status contact_method(int method, Vec3 const &r_in, Sym3 const &q1_in, Sym3 cons
       break;
     case kMethodRational:
       s = contact_rational(r, q1, q2, res);
+      break;
+    case kMethodZheng:  // dca_3d.cpp (issue 5)
+      s = contact_zheng_method(r, q1, q2, res);
       break;
     default:
       res.method = kMethodDefault;
