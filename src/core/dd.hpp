@@ -1,13 +1,16 @@
 // Double-double arithmetic: a value hi + lo with |lo| <= ulp(hi)/2, about
 // 106 bits of significand. Error-free transformations: two_sum (Knuth, TAOCP
-// vol. 2, sec. 4.2.2, theorem B), two_prod via fused multiply-add; the
-// compound operations follow the "accurate" double-double algorithms of
-// Joldes, Muller and Popescu, ACM TOMS 44(2), 2017 (algorithms 6, 12 and 18
-// for sum, product by a double / by a double-double, and algorithm 17 for
-// division), relative error below a few units of 2^-106 (the products use
-// the cheaper "sloppy" low-order terms, a few more units of 2^-106).
-// Everything is inline, allocation-free and noexcept. two_prod uses the FMA
-// instruction when the target has it (-mfma), Dekker's product otherwise.
+// vol. 2, sec. 4.2.2, theorem B), two_prod by fused multiply-add or, without
+// one, Dekker's product (Numer. Math. 18, 1971, mul12) with Veltkamp's
+// splitting; the compound operations follow the double-double algorithms of
+// Joldes, Muller and Popescu, ACM TOMS 44(2), 2017 (sum: algorithm 6;
+// products: the "sloppy" low-order terms), relative error a few units of
+// 2^-106.
+//
+// Every function takes a template flag F: true uses std::fma (to be
+// instantiated only inside a function compiled for a target with an FMA
+// instruction, see dd_kernels.cpp), false uses Dekker's product (portable).
+// Everything is inline, allocation-free and noexcept.
 #pragma once
 
 #include <cmath>
@@ -31,28 +34,24 @@ inline DD fast_two_sum(double a, double b) noexcept {  // requires |a| >= |b|
   return DD{s, b - (s - a)};
 }
 
-#ifdef __FMA__
-inline DD two_prod(double a, double b) noexcept {
-  double const p = a * b;
-  return DD{p, std::fma(a, b, -p)};
-}
-#else
-// Without hardware FMA std::fma is a library call, much slower than
-// Dekker's product (Dekker, Numer. Math. 18, 1971, mul12) with Veltkamp's
-// splitting, exact barring overflow.
 inline void split(double a, double &hi, double &lo) noexcept {
   double const c = 134217729.0 * a;  // 2^27 + 1
   hi = c - (c - a);
   lo = a - hi;
 }
+
+template <bool F>
 inline DD two_prod(double a, double b) noexcept {
   double const p = a * b;
-  double ah, al, bh, bl;
-  split(a, ah, al);
-  split(b, bh, bl);
-  return DD{p, ((ah * bh - p) + ah * bl + al * bh) + al * bl};
+  if constexpr (F) {
+    return DD{p, std::fma(a, b, -p)};
+  } else {
+    double ah, al, bh, bl;
+    split(a, ah, al);
+    split(b, bh, bl);
+    return DD{p, ((ah * bh - p) + ah * bl + al * bh) + al * bl};
+  }
 }
-#endif
 
 inline DD add(DD x, DD y) noexcept {
   DD s = two_sum(x.hi, y.hi);
@@ -72,26 +71,28 @@ inline DD add(DD x, double y) noexcept {
 inline DD neg(DD x) noexcept { return DD{-x.hi, -x.lo}; }
 inline DD sub(DD x, DD y) noexcept { return add(x, neg(y)); }
 
+template <bool F>
 inline DD mul(DD x, double y) noexcept {
-  DD p = two_prod(x.hi, y);
+  DD p = two_prod<F>(x.hi, y);
   p.lo += x.lo * y;
   return fast_two_sum(p.hi, p.lo);
 }
 
+template <bool F>
 inline DD mul(DD x, DD y) noexcept {
-  DD p = two_prod(x.hi, y.hi);
-  double const t = x.hi * y.lo + x.lo * y.hi;
-  p.lo += t;
+  DD p = two_prod<F>(x.hi, y.hi);
+  p.lo += x.hi * y.lo + x.lo * y.hi;
   return fast_two_sum(p.hi, p.lo);
 }
 
+template <bool F>
 inline DD div(DD x, DD y) noexcept {
   double const q1 = x.hi / y.hi;
-  DD const r = sub(x, mul(y, q1));
+  DD const r = sub(x, mul<F>(y, q1));
   double const q2 = r.hi / y.hi;
-  DD const r2 = sub(r, mul(y, q2));
+  DD const r2 = sub(r, mul<F>(y, q2));
   double const q3 = r2.hi / y.hi;
-  DD q = fast_two_sum(q1, q2);
+  DD const q = fast_two_sum(q1, q2);
   return add(q, q3);
 }
 

@@ -1,8 +1,17 @@
 // PW85_METHOD_DEFAULT (docs/methods.md, section "DEFAULT"):
+//  0. a safeguarded Halley iteration as NEWTON's (newton.cpp) but with f and
+//     its derivatives from the adjugate of Q(lambda) (f_adj.hpp, eq. (M16)),
+//     then f at the final lambda by the stationary form (f_dd.hpp, eq. (M11))
+//     whose error is second order in the error of s, bounded componentwise
+//     (eq. (M17)); if the total estimate is below kFastRel * mu2 (most pairs)
+//     that is the result; otherwise:
 //  1. the NEWTON iteration in double (newton.cpp) with its error estimate
 //     (eq. (M10));
-//  2. if the estimate is below kFastRel * mu2, that result is returned (the
-//     fast path, taken by most pairs);
+//  2. f at the final lambda by the stationary form 2 r^T s - s^T Q s with
+//     compensated dot products (f_dd.hpp, eq. (M11)), whose error is second
+//     order in the error of the double solve; if the estimate is below
+//     kFastRel * mu2, that result is returned (the fast path, taken by most
+//     pairs);
 //  3. otherwise f and f' are re-evaluated in double-double at the current
 //     lambda (f_dd.hpp, eq. (M11)) and Newton steps on f' are taken with the
 //     double-precision f'' as slope, until the gap f'^2 / (2|f''|) is below
@@ -17,6 +26,7 @@
 #include "contact.hpp"
 #include "f_dd.hpp"
 #include "newton.hpp"
+#include "f_adj.hpp"
 
 namespace pw85 {
 
@@ -24,6 +34,12 @@ namespace {
 constexpr double kU = 0x1p-53;
 // Fast path when the estimated relative error is below this.
 constexpr double kFastRel = 4e-15;
+constexpr double kExtrapGap = 1e-6;
+constexpr double kExtrapBudget = 1e-16;
+constexpr int kAdjMaxIter = 30;
+// The stationary form is tried when the first-order relative error of the
+// double phi is below this (its second-order error is then below ~4e-16).
+constexpr double kMaxFirstOrderRel = 1e-8;
 constexpr double kDDGapTol = 0x1p-60;
 constexpr int kDDMaxNewton = 6;
 constexpr int kDDMaxBisect = 80;
@@ -33,31 +49,121 @@ Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                        MethodResult &res) noexcept {
   res.iterations = 0;
   Sym3 const d = difference(q2, q1);
+  // Step 1: Halley iteration with adjugate evaluations (f_adj.hpp).
+  double const lambda0 = newton_start(r, q1, q2);
+  double start = lambda0;
+  {
+    double lo = 0.0, hi = 1.0, lambda = lambda0;
+    AdjEval e;
+    for (int it = 0; it < kAdjMaxIter; ++it) {
+      ++res.iterations;
+      if (!f_eval_adj(lambda, r, q1, q2, d, e)) break;
+      start = lambda;
+      if (e.df > 0.0)
+        lo = lambda;
+      else
+        hi = lambda;
+      double const a = -e.d2f;
+      double step;
+      double const den = 2.0 * e.d2f * e.d2f - e.df * e.d3f;
+      if (a > 0.0 && den > 0.0)
+        step = -2.0 * e.df * e.d2f / den;  // Halley, eq. (M8)
+      else if (a > 0.0)
+        step = e.df / a;
+      else
+        step = 0.5 * (lo + hi) - lambda;
+      double const next = lambda + step;
+      bool const inside = next > lo && next < hi;
+      bool const tiny = std::fabs(step) <= 2.0 * kU * lambda;
+      if (a > 0.0 && (tiny || (inside && e.df * e.df <= 2.0 * a * kExtrapGap * e.f))) {
+        // Error terms (eqs. (M10), (M17)): E bounds the error of s.
+        Vec3 const E = adj_error(e, r, q1, q2);
+        double const p = lambda * (1.0 - lambda), p1 = std::fabs(1.0 - 2.0 * lambda);
+        Vec3 const as{{std::fabs(e.s[0]), std::fabs(e.s[1]), std::fabs(e.s[2])}};
+        Sym3 da, qa;
+        for (int i = 0; i < kSym; ++i) {
+          da[i] = std::fabs(d[i]);
+          qa[i] = std::fabs(e.q[i]);
+        }
+        Vec3 const ar{{std::fabs(r[0]), std::fabs(r[1]), std::fabs(r[2])}};
+        double const edf = p1 * dot(ar, E) + 2.0 * p * dot(as, multiply(da, E)) +
+                           4.0 * kU * (p1 * e.phi + p * std::fabs(e.dphi));
+        double const h = tiny ? 0.0 : step;
+        double const trunc = std::fabs(e.d3f * h * h * h) / 6.0;
+        double const err_l = edf * std::fabs(h) + edf * edf / (2.0 * a) + 2.0 * trunc;
+        if (err_l <= kExtrapBudget * e.f || std::fabs(e.df) <= 2.0 * edf || tiny) {
+          double const corr = h * (e.df + h * (0.5 * e.d2f + h * e.d3f / 6.0));
+          // First-order error of the double f: |r|^T E + rounding of r^T s.
+          double const err1 =
+              p * (dot(ar, E) + 3.0 * kU * dot(ar, as)) + 4.0 * kU * e.f + err_l;
+          if (err1 <= kFastRel * e.f) {
+            res.mu2 = e.f + corr;
+            res.lambda = lambda + h;
+            res.mu2_error = err1;
+            return kOk;
+          }
+          double const mu2 = f_stationary(lambda, r, q1, q2, e.s) + corr;
+          // Second-order error of the stationary form: p E^T |Q| E.
+          double const err = mu2 * 8.0 * kU + p * dot(E, multiply(qa, E)) + err_l;
+          if (err <= kFastRel * mu2) {
+            res.mu2 = mu2;
+            res.lambda = lambda + h;
+            res.mu2_error = err;
+            return kOk;
+          }
+          if (!tiny) start = next;
+          break;
+        }
+      }
+      if (tiny) break;
+      lambda = inside ? next : 0.5 * (lo + hi);
+    }
+  }
+  // Step 2: LDL^T evaluations (newton.cpp), from the best lambda so far.
   NewtonState st;
   FEval &e = st.e;
   e.f = std::nan("");
-  bool const ok = newton_iterate(r, q1, q2, d, newton_start(r, q1, q2), st, res.iterations);
+  bool const ok = newton_iterate(r, q1, q2, d, start, st, res.iterations);
   double rel_double = 1.0;  // estimated relative error of the double phi
   if (std::isfinite(e.f)) {
-    double const err = newton_error(st, r, q1, q2);
-    if (ok && err <= kFastRel * st.mu2) {
+    newton_fill_error_terms(st, r, q1, q2);
+    rel_double = st.rel;
+    double const a = -e.d2f;
+    double const err_double = st.rel * std::fabs(st.mu2) + newton_lambda_error(st);
+    if (ok && err_double <= kFastRel * st.mu2) {
+      // Accurate enough in double: no compensated re-evaluation needed.
       res.mu2 = st.mu2;
       res.lambda = st.lambda;
-      res.mu2_error = err;
+      res.mu2_error = err_double;
       return kOk;
     }
-    rel_double = phi_error(e, r, q1, q2) / e.phi;
+    if (ok && a > 0.0 && rel_double <= kMaxFirstOrderRel) {
+      // f at e.lambda by the stationary form (eq. (M11)), error
+      // ~ 8u + 4 rel^2 relative; then the Taylor step of the iteration.
+      double const h = st.step;
+      double const corr = h * (e.df + h * (0.5 * e.d2f + h * e.d3f / 6.0));
+      double const mu2 = f_stationary(e.lambda, r, q1, q2, e.s) + corr;
+      double const err =
+          mu2 * (8.0 * kU + 4.0 * rel_double * rel_double) + newton_lambda_error(st);
+      if (err <= kFastRel * mu2) {
+        res.mu2 = mu2;
+        res.lambda = st.lambda;
+        res.mu2_error = err;
+        return kOk;
+      }
+    }
   }
   // Slow path: double-double.
   // Relative error of the double-double phi: the double estimate with u
   // replaced by u^2 (times 8 for the extra operations of double-double),
   // plus the final rounding to double.
   double const rel_dd = 8.0 * rel_double * kU + 2.0 * kU;
+  if (std::isfinite(e.f)) e.lambda = st.lambda > 0.0 && st.lambda < 1.0 ? st.lambda : e.lambda;
   FEvalDD fd;
   double lambda;
   double a = std::isfinite(e.f) ? -e.d2f : 0.0;  // -f'' > 0
   if (std::isfinite(e.f) && a > 0.0) {
-    lambda = (st.lambda > 0.0 && st.lambda < 1.0) ? st.lambda : e.lambda;
+    lambda = e.lambda;
     for (int k = 0; k < kDDMaxNewton; ++k) {
       ++res.iterations;
       if (!f_eval_dd(lambda, r, q1, q2, fd)) break;

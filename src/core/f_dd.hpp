@@ -9,6 +9,12 @@
 #include "dd.hpp"
 #include "sym3.hpp"
 
+#if defined(__GNUC__)
+#define PW85_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define PW85_ALWAYS_INLINE inline
+#endif
+
 namespace pw85 {
 
 struct FEvalDD {
@@ -17,53 +23,103 @@ struct FEvalDD {
   double phi;  // r^T Q^{-1} r, rounded to double
 };
 
-inline bool f_eval_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                      FEvalDD &out) noexcept {
+template <bool F>
+PW85_ALWAYS_INLINE bool f_eval_dd_impl(double lambda, Vec3 const &r, Sym3 const &q1,
+                                       Sym3 const &q2, FEvalDD &out) noexcept {
   using namespace dd;
   DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
   DD q[kSym], dq[kSym];
   for (int i = 0; i < kSym; ++i) {
     // (1 - lambda) q1 exactly as a double-double: om.hi q1 + om.lo q1.
-    DD a = two_prod(om.hi, q1[i]);
+    DD a = two_prod<F>(om.hi, q1[i]);
     a = add(a, om.lo * q1[i]);
-    q[i] = add(a, two_prod(lambda, q2[i]));
+    q[i] = add(a, two_prod<F>(lambda, q2[i]));
     dq[i] = two_sum(q2[i], -q1[i]);  // D = Q2 - Q1, exactly
   }
   // L D L^T.
   if (!(q[0].hi > 0.0)) return false;
-  DD const id0 = div(DD{1.0, 0.0}, q[0]);
-  DD const l10 = mul(q[1], id0), l20 = mul(q[2], id0);
-  DD const d1 = sub(q[3], mul(l10, q[1]));
+  DD const id0 = div<F>(DD{1.0, 0.0}, q[0]);
+  DD const l10 = mul<F>(q[1], id0), l20 = mul<F>(q[2], id0);
+  DD const d1 = sub(q[3], mul<F>(l10, q[1]));
   if (!(d1.hi > 0.0)) return false;
-  DD const id1 = div(DD{1.0, 0.0}, d1);
-  DD const e = sub(q[4], mul(l20, q[1]));
-  DD const l21 = mul(e, id1);
-  DD const d2 = sub(sub(q[5], mul(l20, q[2])), mul(l21, e));
+  DD const id1 = div<F>(DD{1.0, 0.0}, d1);
+  DD const e = sub(q[4], mul<F>(l20, q[1]));
+  DD const l21 = mul<F>(e, id1);
+  DD const d2 = sub(sub(q[5], mul<F>(l20, q[2])), mul<F>(l21, e));
   if (!(d2.hi > 0.0)) return false;
-  DD const id2 = div(DD{1.0, 0.0}, d2);
+  DD const id2 = div<F>(DD{1.0, 0.0}, d2);
   // y = L^{-1} r, z = D^{-1} y, s = L^{-T} z.
   DD const y0{r[0], 0.0};
-  DD const y1 = sub(DD{r[1], 0.0}, mul(l10, r[0]));
-  DD const y2 = sub(sub(DD{r[2], 0.0}, mul(l20, r[0])), mul(l21, y1));
-  DD const z0 = mul(y0, id0), z1 = mul(y1, id1), z2 = mul(y2, id2);
-  DD const phi = add(add(mul(y0, z0), mul(y1, z1)), mul(y2, z2));
+  DD const y1 = sub(DD{r[1], 0.0}, mul<F>(l10, r[0]));
+  DD const y2 = sub(sub(DD{r[2], 0.0}, mul<F>(l20, r[0])), mul<F>(l21, y1));
+  DD const z0 = mul<F>(y0, id0), z1 = mul<F>(y1, id1), z2 = mul<F>(y2, id2);
+  DD const phi = add(add(mul<F>(y0, z0), mul<F>(y1, z1)), mul<F>(y2, z2));
   DD const s2 = z2;
-  DD const s1 = sub(z1, mul(l21, s2));
-  DD const s0 = sub(sub(z0, mul(l10, s1)), mul(l20, s2));
+  DD const s1 = sub(z1, mul<F>(l21, s2));
+  DD const s0 = sub(sub(z0, mul<F>(l10, s1)), mul<F>(l20, s2));
   // s^T D s.
-  DD sds = add(add(mul(dq[0], mul(s0, s0)), mul(dq[3], mul(s1, s1))), mul(dq[5], mul(s2, s2)));
-  DD const cross = add(add(mul(dq[1], mul(s0, s1)), mul(dq[2], mul(s0, s2))),
-                       mul(dq[4], mul(s1, s2)));
-  sds = add(sds, mul(cross, 2.0));
+  DD sds = add(add(mul<F>(dq[0], mul<F>(s0, s0)), mul<F>(dq[3], mul<F>(s1, s1))), mul<F>(dq[5], mul<F>(s2, s2)));
+  DD const cross = add(add(mul<F>(dq[1], mul<F>(s0, s1)), mul<F>(dq[2], mul<F>(s0, s2))),
+                       mul<F>(dq[4], mul<F>(s1, s2)));
+  sds = add(sds, mul<F>(cross, 2.0));
   // p = lambda (1 - lambda), p' = 1 - 2 lambda (exact: 2 lambda is exact).
-  DD const p = mul(om, lambda);
+  DD const p = mul<F>(om, lambda);
   DD const p1 = add(om, -lambda);
-  DD const f = mul(p, phi);
-  DD const df = sub(mul(phi, p1), mul(p, sds));  // f' = p' phi + p phi', phi' = -s^T D s
+  DD const f = mul<F>(p, phi);
+  DD const df = sub(mul<F>(phi, p1), mul<F>(p, sds));  // f' = p' phi + p phi', phi' = -s^T D s
   out.f = to_double(f);
   out.df = to_double(df);
   out.phi = to_double(phi);
   return std::isfinite(out.f) && std::isfinite(out.df);
 }
+
+// f(lambda) from a double-precision s ~ Q(lambda)^{-1} r by the stationary
+// form (docs/methods.md, eq. (M11)):
+//   phi = max_x (2 r^T x - x^T Q x) = 2 r^T s - s^T Q s + (s - s*)^T Q (s - s*),
+// so that the error of s enters phi only to second order. With
+// Q = (1 - lambda) Q1 + lambda Q2,
+//   f = lambda (1 - lambda) (2 r^T s - (1 - lambda) s^T Q1 s - lambda s^T Q2 s),
+// where r^T s and s^T Qi s are compensated dot products (the products of
+// doubles are exact double-doubles) and (1 - lambda) s^T Q1 s + lambda s^T Q2 s
+// adds positive numbers. Returns f rounded to double.
+template <bool F>
+PW85_ALWAYS_INLINE double f_stationary_impl(double lambda, Vec3 const &r, Sym3 const &q1,
+                                            Sym3 const &q2, Vec3 const &s) noexcept {
+  using namespace dd;
+  // Products s_j s_k, exact.
+  DD const p[kSym] = {two_prod<F>(s[0], s[0]), two_prod<F>(s[0], s[1]),
+                      two_prod<F>(s[0], s[2]), two_prod<F>(s[1], s[1]),
+                      two_prod<F>(s[1], s[2]), two_prod<F>(s[2], s[2])};
+  // Compensated sums: running sum in double, errors accumulated in c.
+  double a = 0.0, ca = 0.0;
+  for (int i = 0; i < kDim; ++i) {
+    DD const t = two_prod<F>(r[i], s[i]);
+    DD const u = two_sum(a, t.hi);
+    a = u.hi;
+    ca += u.lo + t.lo;
+  }
+  double b1 = 0.0, c1 = 0.0, b2 = 0.0, c2 = 0.0;
+  for (int i = 0; i < kSym; ++i) {
+    double const w = (i == 0 || i == 3 || i == 5) ? 1.0 : 2.0;  // exact
+    DD const t1 = two_prod<F>(w * q1[i], p[i].hi);
+    DD const u1 = two_sum(b1, t1.hi);
+    b1 = u1.hi;
+    c1 += u1.lo + (t1.lo + w * q1[i] * p[i].lo);
+    DD const t2 = two_prod<F>(w * q2[i], p[i].hi);
+    DD const u2 = two_sum(b2, t2.hi);
+    b2 = u2.hi;
+    c2 += u2.lo + (t2.lo + w * q2[i] * p[i].lo);
+  }
+  DD const rs = two_sum(a, ca), sq1 = two_sum(b1, c1), sq2 = two_sum(b2, c2);
+  DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
+  DD const bracket = sub(add(rs, rs), add(mul<F>(sq1, om), mul<F>(sq2, lambda)));
+  return to_double(mul<F>(mul<F>(bracket, om), lambda));
+}
+
+// Dispatching wrappers (dd_kernels.cpp): the FMA variant when the CPU has it.
+bool f_eval_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+               FEvalDD &out) noexcept;
+double f_stationary(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                    Vec3 const &s) noexcept;
 
 }  // namespace pw85

@@ -38,6 +38,7 @@ Status contact_brent_checked(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   e.f = std::nan("");
   st.step = 0.0;
   st.trunc = 0.0;
+  st.rel = -1.0;
   if (std::isfinite(cr.lambda) && f_eval(cr.lambda, r, q1, q2, difference(q2, q1), e)) {
     st.mu2 = e.f;
     st.lambda = e.lambda;

@@ -9,10 +9,9 @@
 //    bracket, and a step that leaves it is replaced by bisection;
 //  - starting point (eq. (M7)): lambda0 = h1 / (h1 + h2), h_i = (r^T Q_i r)^(1/2),
 //    exact for two spheres;
-//  - stopping test (eq. (M9)): once the gap f(lambda*) - f(lambda) ~
-//    f'^2 / (2|f''|) is below 1e-10 f, mu2 is the maximum of the cubic Taylor
-//    model at lambda (no further evaluation); or the step is below the
-//    rounding of lambda.
+//  - stopping test (eq. (M9)): once the estimated error of the maximum of
+//    the cubic Taylor model at lambda is below 1e-16 f, mu2 is that maximum
+//    (no further evaluation); or the step is below the rounding of lambda.
 #include <cmath>
 
 #include "contact.hpp"
@@ -23,7 +22,8 @@ namespace pw85 {
 
 namespace {
 constexpr double kU = 0x1p-53;
-constexpr double kExtrapGap = 1e-10;
+constexpr double kExtrapGap = 1e-6;
+constexpr double kExtrapBudget = 1e-16;
 constexpr int kMaxIter = 60;
 }  // namespace
 
@@ -58,15 +58,29 @@ bool newton_iterate(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Sym3 const &d
       step = 0.5 * (lo + hi) - lambda;
     double next = lambda + step;
     bool const inside = next > lo && next < hi;
-    // Converged: the gap f'^2 / (2|f''|) to the maximum is small enough for
-    // the cubic Taylor model at lambda to give max f with a truncation error
-    // of order gap^2 (eq. (M9)).
+    // Near the maximum (gap f'^2 / (2|f''|) below 1e-6 f): the maximum of the
+    // cubic Taylor model at lambda gives max f with a truncation error of
+    // order gap^2 (eq. (M9)); its other error is (error of f') * step. Stop
+    // when these are below 1e-16 f, or when f' is at its rounding-noise level
+    // (no double iteration can do better).
     if (a > 0.0 && inside && e.df * e.df <= 2.0 * a * kExtrapGap * e.f) {
-      st.lambda = next;
-      st.step = step;
-      st.mu2 = e.f + step * (e.df + step * (0.5 * e.d2f + step * e.d3f / 6.0));
-      st.trunc = std::fabs(e.d3f * step * step * step) / 6.0;
-      return true;
+      double const rel = phi_error(e, r, q1, q2) / e.phi + 4.0 * kU;
+      double const p = lambda * (1.0 - lambda);
+      double const edf = rel * (std::fabs(1.0 - 2.0 * lambda) * e.phi + p * std::fabs(e.dphi));
+      // Truncation of the cubic model: bounded by the size of its last term
+      // |f''' delta^3| / 6 (the remainder f'''' delta^4 / 24 is much smaller
+      // near the maximum), counted twice below (eq. (M9)).
+      double const trunc = std::fabs(e.d3f * step * step * step) / 6.0;
+      double const err = edf * std::fabs(step) + edf * edf / (2.0 * a) + 2.0 * trunc;
+      if (err <= kExtrapBudget * e.f || std::fabs(e.df) <= 2.0 * edf) {
+        st.lambda = next;
+        st.step = step;
+        st.mu2 = e.f + step * (e.df + step * (0.5 * e.d2f + step * e.d3f / 6.0));
+        st.trunc = trunc;
+        st.rel = rel;
+        st.edf = edf;
+        return true;
+      }
     }
     if (!inside) {
       next = 0.5 * (lo + hi);
@@ -77,6 +91,7 @@ bool newton_iterate(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Sym3 const &d
       st.step = 0.0;
       st.mu2 = e.f;
       st.trunc = 0.0;
+      st.rel = -1.0;
       return true;
     }
     lambda = next;
@@ -85,6 +100,7 @@ bool newton_iterate(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Sym3 const &d
   st.step = 0.0;
   st.mu2 = e.f;
   st.trunc = 0.0;
+  st.rel = -1.0;
   return false;
 }
 
@@ -95,18 +111,30 @@ bool newton_iterate(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Sym3 const &d
 // widened by its own error.
 double newton_error(NewtonState const &st, Vec3 const &r, Sym3 const &q1,
                     Sym3 const &q2) noexcept {
+  newton_fill_error_terms(const_cast<NewtonState &>(st), r, q1, q2);
+  FEval const &e = st.e;
+  double const a = -e.d2f;
+  if (!(a > 0.0)) return e.f;
+  return st.rel * std::fabs(st.mu2) + newton_lambda_error(st);
+}
+
+void newton_fill_error_terms(NewtonState &st, Vec3 const &r, Sym3 const &q1,
+                             Sym3 const &q2) noexcept {
+  if (st.rel >= 0.0) return;
   FEval const &e = st.e;
   double const p = e.lambda * (1.0 - e.lambda);
-  double const ephi = phi_error(e, r, q1, q2);
-  double const rel = ephi / e.phi + 4.0 * kU;
-  double const edf = rel * (std::fabs(1.0 - 2.0 * e.lambda) * e.phi + p * std::fabs(e.dphi));
+  st.rel = phi_error(e, r, q1, q2) / e.phi + 4.0 * kU;
+  st.edf = st.rel * (std::fabs(1.0 - 2.0 * e.lambda) * e.phi + p * std::fabs(e.dphi));
+}
+
+double newton_lambda_error(NewtonState const &st) noexcept {
+  FEval const &e = st.e;
   double const a = -e.d2f;
   if (!(a > 0.0)) return e.f;
   if (st.step != 0.0)
-    return rel * std::fabs(st.mu2) + edf * std::fabs(st.step) + edf * edf / (2.0 * a) +
-           2.0 * st.trunc;
-  double const g = std::fabs(e.df) + edf;
-  return rel * e.f + g * g / (2.0 * a);
+    return st.edf * std::fabs(st.step) + st.edf * st.edf / (2.0 * a) + 2.0 * st.trunc;
+  double const g = std::fabs(e.df) + st.edf;
+  return g * g / (2.0 * a);
 }
 
 Status contact_newton(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,

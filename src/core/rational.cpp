@@ -18,6 +18,8 @@
 
 #include "contact.hpp"
 #include "f_cholesky.hpp"
+#include "newton.hpp"
+#include "rational.hpp"
 
 namespace pw85 {
 
@@ -74,32 +76,10 @@ inline double rel_err(RV x) noexcept {
   return x.v > 0.0 ? kCoefErr * kU * x.a / x.v : 1.0;
 }
 
-struct Poly {
-  double a0, a1, a2, b0, b1, b2, b3;
-};
-
-// h' and h'' at lambda; also a and b.
-inline void log_derivs(Poly const &c, double lambda, double &h1, double &h2, double &a,
-                       double &b) noexcept {
-  double const t = lambda, s = 1.0 - lambda;
-  a = s * s * c.a0 + s * t * c.a1 + t * t * c.a2;
-  double const da = -2.0 * s * c.a0 + (s - t) * c.a1 + 2.0 * t * c.a2;
-  double const d2a = 2.0 * (c.a0 - c.a1 + c.a2);
-  b = s * s * s * c.b0 + s * s * t * c.b1 + s * t * t * c.b2 + t * t * t * c.b3;
-  double const db = -3.0 * s * s * c.b0 + s * (s - 2.0 * t) * c.b1 +
-                    t * (2.0 * s - t) * c.b2 + 3.0 * t * t * c.b3;
-  double const d2b = 6.0 * s * c.b0 + (2.0 * t - 4.0 * s) * c.b1 +
-                     (2.0 * s - 4.0 * t) * c.b2 + 6.0 * t * c.b3;
-  double const ia = 1.0 / a, ib = 1.0 / b, it = 1.0 / t, is = 1.0 / s;
-  double const la = da * ia, lb = db * ib;
-  h1 = it - is + la - lb;
-  h2 = -it * it - is * is + d2a * ia - la * la - d2b * ib + lb * lb;
-}
-
 }  // namespace
 
-Status contact_rational(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                        MethodResult &res) noexcept {
+void rational_coefficients(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                           RationalCoefs &c) noexcept {
   RV a[6], b[6], rr[6];
   for (int i = 0; i < 6; ++i) {
     a[i] = rv(q1[i]);
@@ -116,51 +96,101 @@ Status contact_rational(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   RV const b3 = b[0] * cb.c00 + b[1] * cb.c01 + b[2] * cb.c02;
   RV const b1 = trace_product(ca, b), b2 = trace_product(cb, a);
   RV const a0 = quad_form(ca, rr), a1 = quad_form(cm, rr), a2 = quad_form(cb, rr);
-  Poly const c{a0.v, a1.v, a2.v, b0.v, b1.v, b2.v, b3.v};
-  double const ea[3] = {rel_err(a0), rel_err(a1), rel_err(a2)};
-  double const eb[4] = {rel_err(b0), rel_err(b1), rel_err(b2), rel_err(b3)};
+  RV const av[3] = {a0, a1, a2}, bv[4] = {b0, b1, b2, b3};
+  for (int i = 0; i < 3; ++i) {
+    c.a[i] = av[i].v;
+    c.ea[i] = rel_err(av[i]);
+  }
+  for (int i = 0; i < 4; ++i) {
+    c.b[i] = bv[i].v;
+    c.eb[i] = rel_err(bv[i]);
+  }
+}
 
-  // Start: balance of the radii along r, eq. (M7).
-  double const h1s = std::sqrt(dot(r, multiply(q1, r)));
-  double const h2s = std::sqrt(dot(r, multiply(q2, r)));
-  double lambda = h1s / (h1s + h2s);
-  if (!(lambda > 0.0 && lambda < 1.0)) lambda = 0.5;
-  double lo = 0.0, hi = 1.0, h1 = 0.0, h2 = -1.0, av = 0.0, bv = 0.0;
-  bool converged = false;
-  res.iterations = 0;
+void rational_maximise(RationalCoefs const &c, double lambda, RationalMax &m) noexcept {
+  double const a0 = c.a[0], a1 = c.a[1], a2 = c.a[2];
+  double const b0 = c.b[0], b1 = c.b[1], b2 = c.b[2], b3 = c.b[3];
+  double const d2a = 2.0 * (a0 - a1 + a2);
+  double const d3b = 6.0 * (b3 - b2 + b1 - b0);
+  double lo = 0.0, hi = 1.0;
+  double s = 1.0 - lambda, t = lambda, av = 0.0, bv = 1.0, gap = 0.0;
+  m.converged = false;
+  m.iterations = 0;
   for (int it = 0; it < kMaxIter; ++it) {
-    ++res.iterations;
-    log_derivs(c, lambda, h1, h2, av, bv);
-    if (h1 > 0.0)
+    ++m.iterations;
+    t = lambda;
+    s = 1.0 - lambda;
+    // a, b and their derivatives (Bernstein form, eq. (M13)).
+    av = s * (s * a0 + t * a1) + t * t * a2;
+    double const da = -2.0 * s * a0 + (s - t) * a1 + 2.0 * t * a2;
+    bv = s * s * (s * b0 + t * b1) + t * t * (s * b2 + t * b3);
+    double const db = -3.0 * s * s * b0 + s * (s - 2.0 * t) * b1 +
+                      t * (2.0 * s - t) * b2 + 3.0 * t * t * b3;
+    double const d2b = 6.0 * s * b0 + (2.0 * t - 4.0 * s) * b1 +
+                       (2.0 * s - 4.0 * t) * b2 + 6.0 * t * b3;
+    // N = (s - t) a b + s t (a' b - a b'), f' = N / b^2, and N', N''
+    // (eq. (M14)).
+    double const st = s * t, smt = s - t, ab = av * bv;
+    double const n0 = smt * ab + st * (da * bv - av * db);
+    double const n1 = -2.0 * ab + 2.0 * smt * da * bv + st * (d2a * bv - av * d2b);
+    double const n2 = -6.0 * da * bv - 2.0 * av * db +
+                      smt * (3.0 * d2a * bv + 2.0 * da * db - av * d2b) +
+                      st * (d2a * db - da * d2b - av * d3b);
+    if (n0 > 0.0)
       lo = lambda;
     else
       hi = lambda;
-    if (h2 < 0.0 && h1 * h1 <= -2.0 * h2 * kGapTol) {
-      converged = true;
+    // Relative gap to the maximum: (log f)'^2 / (2 |(log f)''|), with
+    // (log f)' = N / (s t a b) and (log f)'' ~ N' / (s t a b); converged when
+    // below kGapTol (tested without division).
+    double const scale = -2.0 * n1 * st * ab;
+    if (n1 < 0.0 && n0 * n0 <= kGapTol * scale) {
+      gap = n0 * n0 / scale;
+      m.converged = true;
       break;
     }
-    double next = h2 < 0.0 ? lambda - h1 / h2 : 0.5 * (lo + hi);
+    double step;
+    double const den = 2.0 * n1 * n1 - n0 * n2;
+    if (n1 < 0.0 && den > 0.0)
+      step = -2.0 * n0 * n1 / den;  // Halley
+    else if (n1 < 0.0)
+      step = -n0 / n1;  // Newton
+    else
+      step = 0.5 * (lo + hi) - lambda;
+    double next = lambda + step;
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     if (std::fabs(next - lambda) <= 2.0 * kU * lambda) {
-      converged = true;
+      m.converged = true;
       break;
     }
     lambda = next;
   }
-  double const t = lambda, s = 1.0 - lambda;
-  double const f = s * t * av / bv;
-  // Error estimate: relative errors of the coefficients weighted by their
-  // (positive) Bernstein terms, plus rounding of the evaluation, plus the gap
-  // h'^2 / (2|h''|) (relative, in log f).
-  double const ta[3] = {s * s * c.a0, s * t * c.a1, t * t * c.a2};
-  double const tb[4] = {s * s * s * c.b0, s * s * t * c.b1, s * t * t * c.b2, t * t * t * c.b3};
+  m.lambda = lambda;
+  m.f = s * t * av / bv;
+  m.gap = m.converged ? gap : 1.0;
+  // Error of f from the coefficients: their relative errors weighted by the
+  // (positive) Bernstein terms, plus the rounding of the evaluation.
+  double const ta[3] = {s * s * a0, s * t * a1, t * t * a2};
+  double const tb[4] = {s * s * s * b0, s * s * t * b1, s * t * t * b2, t * t * t * b3};
   double rel = 12.0 * kU;
-  for (int i = 0; i < 3; ++i) rel += ea[i] * std::fabs(ta[i]) / std::fabs(av);
-  for (int i = 0; i < 4; ++i) rel += eb[i] * std::fabs(tb[i]) / std::fabs(bv);
-  double const gap = h2 < 0.0 ? h1 * h1 / (-2.0 * h2) : 1.0;
+  for (int i = 0; i < 3; ++i) rel += c.ea[i] * std::fabs(ta[i]);
+  rel = 12.0 * kU + (rel - 12.0 * kU) / std::fabs(av);
+  double relb = 0.0;
+  for (int i = 0; i < 4; ++i) relb += c.eb[i] * std::fabs(tb[i]);
+  m.rel_coef = rel + relb / std::fabs(bv);
+}
+
+Status contact_rational(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                        MethodResult &res) noexcept {
+  RationalCoefs c;
+  rational_coefficients(r, q1, q2, c);
+  RationalMax m;
+  rational_maximise(c, newton_start(r, q1, q2), m);
+  res.iterations = m.iterations;
+  double const lambda = m.lambda, f = m.f;
   res.mu2 = f;
   res.lambda = lambda;
-  res.mu2_error = (rel + gap) * std::fabs(f);
+  res.mu2_error = (m.rel_coef + m.gap) * std::fabs(f);
   if (!(std::isfinite(f) && f > 0.0 && std::isfinite(res.mu2_error))) {
     // Coefficients destroyed by rounding: report f at lambda through a
     // Cholesky evaluation, flagged.
@@ -170,7 +200,7 @@ Status contact_rational(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
     res.mu2_error = fc;
     return kInaccurate;
   }
-  if (!converged) return kNoConvergence;
+  if (!m.converged) return kNoConvergence;
   return res.mu2_error <= kRationalRelAccuracy * res.mu2 ? kOk : kInaccurate;
 }
 

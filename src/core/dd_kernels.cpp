@@ -1,0 +1,55 @@
+// The double-double kernels of f_dd.hpp, compiled twice on x86: once for
+// any CPU (Dekker's product) and once with the FMA instruction (target
+// attribute), chosen at run time with __builtin_cpu_supports. std::fma
+// without hardware FMA is a library call, ten times slower than either.
+#include "f_dd.hpp"
+
+namespace pw85 {
+
+#if defined(__FMA__)
+#define PW85_DD_STATIC_FMA 1
+#elif (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+#define PW85_DD_DISPATCH 1
+#endif
+
+namespace {
+#ifdef PW85_DD_DISPATCH
+__attribute__((target("fma"))) bool f_eval_dd_fma(double lambda, Vec3 const &r,
+                                                  Sym3 const &q1, Sym3 const &q2,
+                                                  FEvalDD &out) noexcept {
+  return f_eval_dd_impl<true>(lambda, r, q1, q2, out);
+}
+__attribute__((target("fma"))) double f_stationary_fma(double lambda, Vec3 const &r,
+                                                      Sym3 const &q1, Sym3 const &q2,
+                                                      Vec3 const &s) noexcept {
+  return f_stationary_impl<true>(lambda, r, q1, q2, s);
+}
+inline bool cpu_has_fma() noexcept { return __builtin_cpu_supports("fma"); }
+#endif
+}  // namespace
+
+bool f_eval_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+               FEvalDD &out) noexcept {
+#if defined(PW85_DD_STATIC_FMA)
+  return f_eval_dd_impl<true>(lambda, r, q1, q2, out);
+#else
+#if defined(PW85_DD_DISPATCH)
+  if (cpu_has_fma()) return f_eval_dd_fma(lambda, r, q1, q2, out);
+#endif
+  return f_eval_dd_impl<false>(lambda, r, q1, q2, out);
+#endif
+}
+
+double f_stationary(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                    Vec3 const &s) noexcept {
+#if defined(PW85_DD_STATIC_FMA)
+  return f_stationary_impl<true>(lambda, r, q1, q2, s);
+#else
+#if defined(PW85_DD_DISPATCH)
+  if (cpu_has_fma()) return f_stationary_fma(lambda, r, q1, q2, s);
+#endif
+  return f_stationary_impl<false>(lambda, r, q1, q2, s);
+#endif
+}
+
+}  // namespace pw85
