@@ -40,6 +40,9 @@ module pw85
   integer(c_int), parameter :: PW85_ERR_NOT_ORTHONORMAL = -4
   integer(c_int), parameter :: PW85_ERR_UNKNOWN_METHOD = -5
   integer(c_int), parameter :: PW85_ERR_INACCURATE = -6
+  ! Distance of closest approach (issue 5): PW85_DCA_THETA_TOL, PW85_DCA_MAX_EVAL.
+  real(c_double), parameter :: PW85_DCA_THETA_TOL = 1.0e-8_c_double
+  integer(c_int), parameter :: PW85_DCA_MAX_EVAL = 100
 
   interface
     ! size_t strlen(const char *s) of the C library.
@@ -122,6 +125,49 @@ module pw85
     end function pw85_contact_function
 
     ! -- interfaces added by later features go below --
+
+    ! ---- Distance of closest approach (issue 5, docs/dca.md) ----
+    ! int pw85_dca_2d(double const u[2], double const q1[3],
+    !                 double const q2[3], double *d)
+    ! 2D ellipses: q = (Q11, Q12, Q22); u need not be a unit vector.
+    function pw85_dca_2d(u, q1, q2, d) bind(C, name="pw85_dca_2d") result(status)
+      import :: c_double, c_int
+      real(c_double), intent(in) :: u(2), q1(3), q2(3)
+      real(c_double), intent(out) :: d
+      integer(c_int) :: status
+    end function pw85_dca_2d
+
+    ! int pw85_contact_function_2d(double const r12[2], double const q1[3],
+    !                              double const q2[3], double out[2])
+    function pw85_contact_function_2d(r12, q1, q2, out) &
+        bind(C, name="pw85_contact_function_2d") result(status)
+      import :: c_double, c_int
+      real(c_double), intent(in) :: r12(2), q1(3), q2(3)
+      real(c_double), intent(out) :: out(2)
+      integer(c_int) :: status
+    end function pw85_contact_function_2d
+
+    ! int pw85_dca(double const u[3], double const q1[6], double const q2[6],
+    !              int method, double *d)
+    function pw85_dca(u, q1, q2, method, d) bind(C, name="pw85_dca") result(status)
+      import :: c_double, c_int
+      real(c_double), intent(in) :: u(3), q1(6), q2(6)
+      integer(c_int), value :: method
+      real(c_double), intent(out) :: d
+      integer(c_int) :: status
+    end function pw85_dca
+
+    ! int pw85_dca_ex(double const u[3], double const q1[6], double const q2[6],
+    !                 double theta_tol, double *d, int *evaluations)
+    function pw85_dca_ex(u, q1, q2, theta_tol, d, evaluations) &
+        bind(C, name="pw85_dca_ex") result(status)
+      import :: c_double, c_int
+      real(c_double), intent(in) :: u(3), q1(6), q2(6)
+      real(c_double), value :: theta_tol
+      real(c_double), intent(out) :: d
+      integer(c_int), intent(out) :: evaluations
+      integer(c_int) :: status
+    end function pw85_dca_ex
   end interface
 
 contains
