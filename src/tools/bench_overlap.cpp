@@ -1,0 +1,510 @@
+// Benchmark of the exact overlap predicate pw85_overlap (issue 6).
+// NOT a test: built by meson, never run by `meson test`, not installed.
+//
+//   bench_overlap [--n N] [--reps R] [--seed S] [--ref FILE]
+//                 [--batch-n N] [--batch-m M] [--batch-reps R] [--no-batch] OUT.csv
+//
+// Scenes (one row of the table per scene and function):
+//  - gen/class0..3: N random general ellipsoid pairs per class (three
+//    distinct semi-axes log-uniform in [0.5, 2], [0.1, 10], [0.01, 100],
+//    [0.001, 1000]; orientations uniform (random unit quaternions); centre
+//    distance |r12| = (a1max + a2max) 10^U(-2, 1), i.e. log-uniform between
+//    0.01 and 10 times the sum of the largest semi-axes). The scene keeps both
+//    representations: Q (for pw85) and radii + rotation (for FCL). Reference
+//    verdict: mu2 of pw85_contact_function_method(PW85_METHOD_DEFAULT)
+//    (documented relative accuracy 1e-14), trusted only where
+//    |mu2 - 1| > 1e-8; the other pairs are timed but not counted
+//    (column n_checked).
+//  - ref/contact/class0..3 and ref/near_contact: the groups /contact (per
+//    class) and /near_contact (|mu2 - 1| log-uniform in [1e-15, 1e-2]) of the
+//    reference data file (default: PW85_REF_DATA_PATH, i.e.
+//    data/pw85_ref_data.h5), reference verdict mu2 < 1 from its correctly
+//    rounded mu2 (every pair counted). FCL gets radii and rotation from the
+//    eigen-decomposition of Q (Eigen), so its input differs from Q by
+//    rounding errors (~1e-16 relative).
+// For each scene it times pw85_overlap, the full contact function
+// (pw85_contact_function_method DEFAULT, verdict mu2 < 1) and, when built
+// with FCL (meson option fcl), fcl::collide with a default request on
+// Ellipsoidd objects: R passes over the whole scene, ns per pair = thread CPU
+// time of a pass / number of pairs, median, min and max over the passes;
+// and counts wrong verdicts against the reference.
+// Batch: n random class-0 ellipsoids with centres uniform in a cube of side
+// 2 n^(1/3) (so random pairs range from overlapping to far apart), m random
+// index pairs (i != j); wall-clock time of pw85_overlap_batch and
+// pw85_contact_batch with nthreads = 1 and 2 (one untimed pass each, then
+// --batch-reps passes alternating 1 and 2 threads), median over the passes,
+// speed-up = median time (1 thread) / median time (2 threads).
+#include <algorithm>
+#include <chrono>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <hdf5.h>
+#include <hdf5_hl.h>
+#include <sys/utsname.h>
+#include <time.h>
+
+#ifdef PW85_HAVE_FCL
+#include <Eigen/Dense>
+#include <fcl/fcl.h>
+#endif
+
+#include "pw85.h"
+
+#ifndef PW85_BENCH_FLAGS
+#define PW85_BENCH_FLAGS "unknown"
+#endif
+#ifndef PW85_REF_DATA_PATH
+#define PW85_REF_DATA_PATH "data/pw85_ref_data.h5"
+#endif
+
+namespace {
+
+struct Rng {  // splitmix64
+  uint64_t s;
+  uint64_t next() {
+    uint64_t z = (s += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+  }
+  double uniform() { return (double)(next() >> 11) * 0x1p-53; }
+  double normal() {
+    double const u1 = uniform() + 0x1p-60, u2 = uniform();
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
+  }
+};
+
+// One ellipsoid in both representations: q (upper triangle of Q) and
+// radii a[k] along the columns k of rot.
+struct Ell {
+  double q[6];
+  double a[3];
+  double rot[3][3];
+};
+
+struct Pair {
+  double r[3];
+  Ell e1, e2;
+  int ref;  // reference verdict: 1 overlap, 0 not, -1 unknown (not counted)
+};
+
+void q_from_axes(Ell &e) {
+  int idx = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      double s = 0.0;
+      for (int k = 0; k < 3; ++k) s += e.a[k] * e.a[k] * e.rot[i][k] * e.rot[j][k];
+      e.q[idx++] = s;
+    }
+}
+
+double random_ellipsoid(Rng &g, double lo, double hi, Ell &e) {
+  for (double &x : e.a) x = std::exp(std::log(lo) + (std::log(hi) - std::log(lo)) * g.uniform());
+  double w = g.normal(), x = g.normal(), y = g.normal(), z = g.normal();
+  double const n = std::sqrt(w * w + x * x + y * y + z * z);
+  w /= n, x /= n, y /= n, z /= n;
+  double const rot[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
+                            {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
+                            {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
+  std::memcpy(e.rot, rot, sizeof rot);
+  q_from_axes(e);
+  return std::max({e.a[0], e.a[1], e.a[2]});
+}
+
+#ifdef PW85_HAVE_FCL
+// Radii and rotation from the eigen-decomposition of Q (reference groups).
+void axes_from_q(Ell &e) {
+  Eigen::Matrix3d Q;
+  Q << e.q[0], e.q[1], e.q[2], e.q[1], e.q[3], e.q[4], e.q[2], e.q[4], e.q[5];
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(Q);
+  Eigen::Matrix3d V = es.eigenvectors();
+  if (V.determinant() < 0) V.col(0) = -V.col(0);
+  for (int k = 0; k < 3; ++k) {
+    e.a[k] = std::sqrt(std::max(es.eigenvalues()(k), 0.0));
+    for (int i = 0; i < 3; ++i) e.rot[i][k] = V(i, k);
+  }
+}
+#else
+void axes_from_q(Ell &) {}
+#endif
+
+// ---- machine description ---------------------------------------------------
+std::string run_command(char const *cmd) {
+  std::string out;
+  FILE *f = popen(cmd, "r");
+  if (!f) return "unknown";
+  char buf[512];
+  while (fgets(buf, sizeof buf, f)) out += buf;
+  pclose(f);
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  return out;
+}
+
+std::string cpu_model() {
+  FILE *f = std::fopen("/proc/cpuinfo", "r");
+  if (!f) return "unknown";
+  char line[512];
+  std::string m = "unknown";
+  while (std::fgets(line, sizeof line, f)) {
+    if (std::strncmp(line, "model name", 10) == 0) {
+      char const *c = std::strchr(line, ':');
+      if (c) {
+        m = c + 2;
+        while (!m.empty() && m.back() == '\n') m.pop_back();
+      }
+      break;
+    }
+  }
+  std::fclose(f);
+  return m;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  size_t const n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double thread_ns() {
+  timespec t;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return (double)t.tv_sec * 1e9 + (double)t.tv_nsec;
+}
+
+// ---- reference data ----------------------------------------------------------
+bool read_group(char const *path, char const *group, std::vector<Pair> &out,
+                std::vector<int> &cls) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  hid_t const f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) return false;
+  std::string const g = group;
+  hsize_t dims[2] = {0, 0};
+  H5T_class_t tc;
+  size_t ts;
+  bool ok = H5LTget_dataset_info(f, (g + "/mu2").c_str(), dims, &tc, &ts) >= 0;
+  size_t const n = ok ? dims[0] : 0;
+  std::vector<double> r(3 * n), q1(6 * n), q2(6 * n), mu2(n);
+  cls.assign(n, -1);
+  ok = ok && H5LTread_dataset_double(f, (g + "/r12").c_str(), r.data()) >= 0 &&
+       H5LTread_dataset_double(f, (g + "/q1").c_str(), q1.data()) >= 0 &&
+       H5LTread_dataset_double(f, (g + "/q2").c_str(), q2.data()) >= 0 &&
+       H5LTread_dataset_double(f, (g + "/mu2").c_str(), mu2.data()) >= 0 &&
+       H5LTread_dataset_int(f, (g + "/class").c_str(), cls.data()) >= 0;
+  H5Fclose(f);
+  if (!ok) return false;
+  out.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    Pair &p = out[i];
+    std::memcpy(p.r, &r[3 * i], sizeof p.r);
+    std::memcpy(p.e1.q, &q1[6 * i], sizeof p.e1.q);
+    std::memcpy(p.e2.q, &q2[6 * i], sizeof p.e2.q);
+    axes_from_q(p.e1);
+    axes_from_q(p.e2);
+    // mu2 is correctly rounded: mu2 == 1 could hide either side.
+    p.ref = mu2[i] < 1.0 ? 1 : (mu2[i] > 1.0 ? 0 : -1);
+  }
+  return true;
+}
+
+// ---- verdict functions -------------------------------------------------------
+struct Scene {
+  std::string name;
+  std::vector<Pair> pairs;
+#ifdef PW85_HAVE_FCL
+  std::vector<fcl::CollisionObjectd> o1, o2;
+#endif
+};
+
+int verdict_overlap(Pair const &p, size_t) { return pw85_overlap(p.r, p.e1.q, p.e2.q); }
+
+int verdict_contact(Pair const &p, size_t) {
+  pw85_result res;
+  int const s = pw85_contact_function_method(p.r, p.e1.q, p.e2.q, PW85_METHOD_DEFAULT, &res);
+  if (s < 0 && s != PW85_ERR_INACCURATE && s != PW85_ERR_NO_CONVERGENCE) return s;
+  return res.mu2 < 1.0;
+}
+
+struct Stats {
+  double med, mn, mx;
+  int wrong, errors, checked;
+};
+
+template <class F>
+Stats run(Scene const &sc, int reps, F verdict) {
+  Stats st{0, 0, 0, 0, 0, 0};
+  size_t const n = sc.pairs.size();
+  for (size_t i = 0; i < n; ++i) {
+    int const v = verdict(sc.pairs[i], i);
+    if (v < 0) {
+      ++st.errors;
+      continue;
+    }
+    if (sc.pairs[i].ref < 0) continue;
+    ++st.checked;
+    if (v != sc.pairs[i].ref) ++st.wrong;
+  }
+  std::vector<double> ns(reps);
+  volatile int sink = 0;
+  for (int rep = 0; rep < reps; ++rep) {
+    int acc = 0;
+    double const t0 = thread_ns();
+    for (size_t i = 0; i < n; ++i) acc += verdict(sc.pairs[i], i);
+    double const t1 = thread_ns();
+    sink = sink + acc;
+    ns[rep] = (t1 - t0) / (double)n;
+  }
+  st.med = median(ns);
+  st.mn = *std::min_element(ns.begin(), ns.end());
+  st.mx = *std::max_element(ns.begin(), ns.end());
+  return st;
+}
+
+#ifdef PW85_HAVE_FCL
+void make_fcl(Scene &sc) {
+  sc.o1.reserve(sc.pairs.size());
+  sc.o2.reserve(sc.pairs.size());
+  for (Pair const &p : sc.pairs) {
+    for (int w = 0; w < 2; ++w) {
+      Ell const &e = w ? p.e2 : p.e1;
+      auto geom = std::make_shared<fcl::Ellipsoidd>(e.a[0], e.a[1], e.a[2]);
+      fcl::Transform3d tf = fcl::Transform3d::Identity();
+      fcl::Matrix3d R;
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k) R(i, k) = e.rot[i][k];
+      tf.linear() = R;
+      if (w) tf.translation() = fcl::Vector3d(p.r[0], p.r[1], p.r[2]);
+      (w ? sc.o2 : sc.o1).emplace_back(geom, tf);
+    }
+  }
+}
+#endif
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  int n = 20000, reps = 7, batch_reps = 5;
+  long long batch_n = 100000, batch_m = 1000000;
+  bool batch = true;
+  uint64_t seed = 20260521;
+  char const *out = nullptr;
+  char const *ref = std::getenv("PW85_REF_DATA");
+  if (!ref) ref = PW85_REF_DATA_PATH;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--n") && i + 1 < argc)
+      n = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--reps") && i + 1 < argc)
+      reps = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--seed") && i + 1 < argc)
+      seed = std::strtoull(argv[++i], nullptr, 10);
+    else if (!std::strcmp(argv[i], "--ref") && i + 1 < argc)
+      ref = argv[++i];
+    else if (!std::strcmp(argv[i], "--batch-n") && i + 1 < argc)
+      batch_n = std::atoll(argv[++i]);
+    else if (!std::strcmp(argv[i], "--batch-m") && i + 1 < argc)
+      batch_m = std::atoll(argv[++i]);
+    else if (!std::strcmp(argv[i], "--batch-reps") && i + 1 < argc)
+      batch_reps = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--no-batch"))
+      batch = false;
+    else
+      out = argv[i];
+  }
+  if (!out || n <= 0 || reps <= 0 || batch_n < 2 || batch_m <= 0 || batch_reps <= 0) {
+    std::fprintf(stderr,
+                 "usage: %s [--n N] [--reps R] [--seed S] [--ref FILE] [--batch-n N] "
+                 "[--batch-m M] [--batch-reps R] [--no-batch] OUT.csv\n",
+                 argv[0]);
+    return 2;
+  }
+  double const bounds[4][2] = {{0.5, 2}, {0.1, 10}, {0.01, 100}, {0.001, 1000}};
+  std::vector<Scene> scenes;
+  Rng g{seed};
+  int gen_skipped[4] = {0, 0, 0, 0};
+  for (int c = 0; c < 4; ++c) {
+    Scene sc;
+    sc.name = "gen/class" + std::to_string(c);
+    sc.pairs.resize(n);
+    for (Pair &p : sc.pairs) {
+      double const am1 = random_ellipsoid(g, bounds[c][0], bounds[c][1], p.e1);
+      double const am2 = random_ellipsoid(g, bounds[c][0], bounds[c][1], p.e2);
+      double dir[3] = {g.normal(), g.normal(), g.normal()};
+      double const nd = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+      double const dist = (am1 + am2) * std::pow(10.0, -2.0 + 3.0 * g.uniform());
+      for (int k = 0; k < 3; ++k) p.r[k] = dist * dir[k] / nd;
+      pw85_result res;
+      int const s = pw85_contact_function_method(p.r, p.e1.q, p.e2.q, PW85_METHOD_DEFAULT, &res);
+      if (s == PW85_OK && std::fabs(res.mu2 - 1.0) > 1e-8)
+        p.ref = res.mu2 < 1.0;
+      else {
+        p.ref = -1;
+        ++gen_skipped[c];
+      }
+    }
+    scenes.push_back(std::move(sc));
+  }
+  bool have_ref = false;
+  {
+    std::vector<Pair> all;
+    std::vector<int> cls;
+    if (read_group(ref, "/contact", all, cls)) {
+      have_ref = true;
+      for (int c = 0; c < 4; ++c) {
+        Scene sc;
+        sc.name = "ref/contact/class" + std::to_string(c);
+        for (size_t i = 0; i < all.size(); ++i)
+          if (cls[i] == c) sc.pairs.push_back(all[i]);
+        scenes.push_back(std::move(sc));
+      }
+    }
+    if (read_group(ref, "/near_contact", all, cls)) {
+      Scene sc;
+      sc.name = "ref/near_contact";
+      sc.pairs = all;
+      scenes.push_back(std::move(sc));
+    } else {
+      have_ref = false;
+    }
+  }
+  if (!have_ref) std::fprintf(stderr, "warning: reference data %s not read; generated scenes only\n", ref);
+
+  FILE *csv = std::fopen(out, "w");
+  if (!csv) {
+    std::perror(out);
+    return 1;
+  }
+  std::fprintf(csv, "# bench_overlap: pw85 %s, seed %" PRIu64 ", n %d pairs per generated class, reps %d\n",
+               pw85_version(), seed, n, reps);
+  std::fprintf(csv, "# machine: %s\n", run_command("uname -a").c_str());
+  std::fprintf(csv, "# cpu: %s (%s logical CPUs)\n", cpu_model().c_str(), run_command("nproc").c_str());
+  std::fprintf(csv, "# load average at start (shared machine): %s\n",
+               run_command("cat /proc/loadavg").c_str());
+  std::fprintf(csv, "# compiler: g++ %s\n", __VERSION__);
+  std::fprintf(csv, "# flags: %s\n", PW85_BENCH_FLAGS);
+#ifdef PW85_HAVE_FCL
+  std::fprintf(csv, "# fcl: %s, fcl::collide with a default CollisionRequestd (libccd)\n", FCL_VERSION);
+#else
+  std::fprintf(csv, "# fcl: not built (meson option fcl)\n");
+#endif
+  std::fprintf(csv, "# reference data: %s\n", have_ref ? ref : "not read");
+  std::fprintf(csv, "# time: ns per pair = thread CPU time of one pass over the scene / pairs; "
+                    "median, min, max over reps passes\n");
+  std::fprintf(csv, "# reference verdict: gen/* from mu2 of pw85_contact_function_method DEFAULT, "
+                    "only pairs with |mu2 - 1| > 1e-8 counted (n_checked); ref/* from the "
+                    "correctly rounded mu2 of the reference file\n");
+  std::fprintf(csv, "# batch rows: scene = n ellipsoids / m pairs, median_ns = median wall-clock ns "
+                    "per pair over batch reps, ratio column = speed-up (1-thread time / this time)\n");
+  std::fprintf(csv, "scene,function,n_pairs,n_checked,median_ns,min_ns,max_ns,wrong_verdicts,"
+                    "errors,ratio_to_pw85_overlap\n");
+  std::printf("%-22s %-22s %6s %7s %9s %9s %9s %6s %5s %7s\n", "scene", "function", "pairs",
+              "checked", "median_ns", "min_ns", "max_ns", "wrong", "err", "ratio");
+  auto emit = [&](Scene const &sc, char const *fn, Stats const &st, double ratio) {
+    std::printf("%-22s %-22s %6zu %7d %9.1f %9.1f %9.1f %6d %5d %7.2f\n", sc.name.c_str(), fn,
+                sc.pairs.size(), st.checked, st.med, st.mn, st.mx, st.wrong, st.errors, ratio);
+    std::fprintf(csv, "%s,%s,%zu,%d,%.2f,%.2f,%.2f,%d,%d,%.3f\n", sc.name.c_str(), fn,
+                 sc.pairs.size(), st.checked, st.med, st.mn, st.mx, st.wrong, st.errors, ratio);
+    std::fflush(stdout);
+  };
+  for (Scene &sc : scenes) {
+    Stats const ov = run(sc, reps, verdict_overlap);
+    emit(sc, "pw85_overlap", ov, 1.0);
+    Stats const cf = run(sc, reps, verdict_contact);
+    emit(sc, "contact_function_DEFAULT", cf, cf.med / ov.med);
+#ifdef PW85_HAVE_FCL
+    make_fcl(sc);
+    fcl::CollisionRequestd const request;
+    Stats const fc = run(sc, reps, [&sc, &request](Pair const &, size_t i) {
+      fcl::CollisionResultd result;
+      fcl::collide(&sc.o1[i], &sc.o2[i], request, result);
+      return result.isCollision() ? 1 : 0;
+    });
+    emit(sc, "fcl_collide", fc, fc.med / ov.med);
+    sc.o1.clear();
+    sc.o2.clear();
+#endif
+  }
+  for (int c = 0; c < 4; ++c)
+    std::fprintf(csv, "# gen/class%d: %d of %d pairs not counted (|mu2 - 1| <= 1e-8 or status != OK)\n",
+                 c, gen_skipped[c], n);
+
+  if (batch) {
+    // Batch scene: class-0 ellipsoids in a cube.
+    std::vector<double> centres(3 * batch_n), q(6 * batch_n);
+    double const side = 2.0 * std::cbrt((double)batch_n);
+    for (long long i = 0; i < batch_n; ++i) {
+      Ell e;
+      random_ellipsoid(g, 0.5, 2.0, e);
+      std::memcpy(&q[6 * i], e.q, sizeof e.q);
+      for (int d = 0; d < 3; ++d) centres[3 * i + d] = side * g.uniform();
+    }
+    std::vector<long long> pairs(2 * batch_m);
+    for (long long k = 0; k < batch_m; ++k) {
+      long long i = (long long)(g.next() % (uint64_t)batch_n), j;
+      do j = (long long)(g.next() % (uint64_t)batch_n); while (j == i);
+      pairs[2 * k] = i;
+      pairs[2 * k + 1] = j;
+    }
+    std::vector<int> ov(batch_m), st(batch_m);
+    std::vector<pw85_contact_t> ct(batch_m);
+    char name[64];
+    for (int order = 0; order < 2; ++order) {
+    if (order == 1) {
+      // Pairs sorted by (i, j), as a neighbour list would be: the centre and
+      // matrix of i stay in cache.
+      std::vector<std::pair<long long, long long>> v(batch_m);
+      for (long long k = 0; k < batch_m; ++k) v[k] = {pairs[2 * k], pairs[2 * k + 1]};
+      std::sort(v.begin(), v.end());
+      for (long long k = 0; k < batch_m; ++k) pairs[2 * k] = v[k].first, pairs[2 * k + 1] = v[k].second;
+    }
+    std::snprintf(name, sizeof name, "batch/%lld/%lld/%s", batch_n, batch_m,
+                  order ? "sorted" : "random");
+    for (int fn = 0; fn < 2; ++fn) {
+      // One untimed pass (caches, OpenMP thread pool), then reps passes
+      // alternating 1 and 2 threads, so that load from other processes on
+      // the shared machine hits both alike.
+      std::vector<double> w[3];
+      int status[3] = {0, 0, 0};
+      for (int rep = -1; rep < batch_reps; ++rep)
+        for (int threads = 1; threads <= 2; ++threads) {
+          auto const t0 = std::chrono::steady_clock::now();
+          status[threads] = fn == 0 ? pw85_overlap_batch(batch_n, centres.data(), q.data(), batch_m,
+                                                         pairs.data(), ov.data(), st.data(), threads)
+                                    : pw85_contact_batch(batch_n, centres.data(), q.data(), batch_m,
+                                                         pairs.data(), ct.data(), st.data(), threads);
+          auto const t1 = std::chrono::steady_clock::now();
+          if (rep >= 0)
+            w[threads].push_back(std::chrono::duration<double, std::nano>(t1 - t0).count() /
+                                 (double)batch_m);
+        }
+      double const t1thread = median(w[1]);
+      for (int threads = 1; threads <= 2; ++threads) {
+        double const med = median(w[threads]);
+        char const *fname = fn == 0 ? "pw85_overlap_batch" : "pw85_contact_batch";
+        char label[64];
+        std::snprintf(label, sizeof label, "%s/%dthr", fname, threads);
+        double const mn = *std::min_element(w[threads].begin(), w[threads].end());
+        double const mx = *std::max_element(w[threads].begin(), w[threads].end());
+        double const speedup = t1thread / med;
+        std::printf("%-22s %-22s %6lld %7s %9.1f %9.1f %9.1f %6s %5d %7.2f\n", name, label,
+                    batch_m, "-", med, mn, mx, "-", status[threads] != PW85_OK, speedup);
+        std::fprintf(csv, "%s,%s,%lld,0,%.2f,%.2f,%.2f,,%d,%.3f\n", name, label, batch_m, med,
+                     mn, mx, status[threads] != PW85_OK, speedup);
+        std::fflush(stdout);
+      }
+    }
+    }
+    long long noverlap = 0;
+    for (int v : ov) noverlap += v == 1;
+    std::fprintf(csv, "# batch scene: %lld class-0 ellipsoids, centres uniform in a cube of side "
+                      "%.3f, %lld random pairs (i != j), %lld of them overlapping; wall-clock time; "
+                      "random: pairs in random order; sorted: the same pairs sorted by (i, j)\n",
+                 batch_n, side, batch_m, noverlap);
+  }
+  std::fclose(csv);
+  return 0;
+}
