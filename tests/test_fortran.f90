@@ -19,10 +19,14 @@ program test_fortran
   real(c_double) :: radii(3), axes(3, 3)
   integer(c_int) :: status
   integer :: ntest = 0, nfail = 0
+  type(pw85_contact_t) :: contact
+  real(c_double) :: centres(3, 2), qs(6, 2)
+  integer(c_long_long) :: pairs(2, 2)
+  integer(c_int) :: verdicts(2)
   character(len=:), allocatable :: version, message_ok, message_spd
 
   write (*, '(a)') 'TAP version 13'
-  write (*, '(a)') '1..9'
+  write (*, '(a)') '1..13'
 
   ! Version: the loaded library and the module constant agree.
   version = pw85_version_string()
@@ -82,6 +86,32 @@ program test_fortran
   status = pw85_contact_function(r12, q1, q2, out)
   call check(status == PW85_ERR_INVALID_ARGUMENT .and. all(ieee_is_nan(out)), &
              'pw85_contact_function: NaN in r12 gives PW85_ERR_INVALID_ARGUMENT')
+
+  ! Issue 6: overlap predicate, contact geometry and a batch call on the
+  ! tutorial pair (mu^2 = 3.36 > 1: apart; with r12 / 2, mu^2 = 3.36 / 4 < 1:
+  ! overlapping, since mu^2 is homogeneous of degree 2 in r12).
+  r12 = x2 - x1
+  call check(pw85_overlap(r12, q1, q2) == 0, 'pw85_overlap: tutorial pair (mu^2 = 3.36) gives 0')
+  call check(pw85_overlap(0.5_c_double * r12, q1, q2) == 1, &
+             'pw85_overlap: tutorial pair with r12 / 2 (mu^2 = 0.84) gives 1')
+  status = pw85_contact(r12, q1, q2, contact)
+  call check(status == PW85_OK .and. abs(contact%mu2 - MU2_REF) <= RTOL * MU2_REF .and. &
+             abs(contact%lambda - LAMBDA_REF) <= RTOL * LAMBDA_REF .and. &
+             abs(contact%dca - norm2(r12) / sqrt(MU2_REF)) <= RTOL * contact%dca .and. &
+             contact%depth < 0.0_c_double .and. &
+             abs(norm2(contact%n) - 1.0_c_double) <= 8 * epsilon(1.0_c_double) .and. &
+             dot_product(contact%n, r12) > 0.0_c_double, &
+             'pw85_contact: tutorial mu^2, lambda, dca = |r12| / mu, depth < 0, unit normal towards 2')
+  centres(:, 1) = x1
+  centres(:, 2) = x2
+  qs(:, 1) = q1
+  qs(:, 2) = q2
+  pairs(:, 1) = [0_c_long_long, 1_c_long_long]
+  pairs(:, 2) = [1_c_long_long, 0_c_long_long]
+  status = pw85_overlap_batch(2_c_long_long, centres, qs, 2_c_long_long, pairs, verdicts, &
+                              nthreads=1_c_int)
+  call check(status == PW85_OK .and. all(verdicts == 0), &
+             'pw85_overlap_batch: both orders of the tutorial pair give 0 (status omitted)')
 
   ! Main-program allocatables are not freed automatically at the end; free
   ! them so that LeakSanitizer (sanitizer builds) sees no leak.

@@ -44,6 +44,18 @@ module pw85
   real(c_double), parameter :: PW85_DCA_THETA_TOL = 1.0e-8_c_double
   integer(c_int), parameter :: PW85_DCA_MAX_EVAL = 100
 
+  ! Contact geometry (issue 6): mirror of struct pw85_contact_t of pw85.h
+  ! (docs/contact_geometry.md). Fortran index k of x0 and n is C index k - 1.
+  type, bind(c) :: pw85_contact_t
+    real(c_double) :: mu2      ! contact function mu^2
+    real(c_double) :: lambda   ! maximiser of f on [0, 1]
+    real(c_double) :: x0(3)    ! contact point (scaled by mu), relative to centre 1
+    real(c_double) :: n(3)     ! unit common normal at x0, from 1 towards 2
+    real(c_double) :: dca      ! distance of closest approach along r12
+    real(c_double) :: depth    ! overlap depth along r12 (> 0: overlap)
+    real(c_double) :: depth_n  ! depth projected on the normal
+  end type pw85_contact_t
+
   interface
     ! size_t strlen(const char *s) of the C library.
     function c_strlen(s) bind(C, name="strlen") result(n)
@@ -125,6 +137,72 @@ module pw85
     end function pw85_contact_function
 
     ! -- interfaces added by later features go below --
+
+    ! ---- Overlap, contact geometry and batch calls (issue 6, docs/overlap.md,
+    ! docs/contact_geometry.md, docs/batch.md) ----
+    ! int pw85_overlap(double const r12[3], double const q1[6], double const q2[6])
+    ! Returns 1 (overlap), 0 (no overlap) or a negative status.
+    function pw85_overlap(r12, q1, q2) bind(C, name="pw85_overlap") result(verdict)
+      import :: c_double, c_int
+      real(c_double), intent(in) :: r12(3), q1(6), q2(6)
+      integer(c_int) :: verdict
+    end function pw85_overlap
+
+    ! int pw85_contact(double const r12[3], double const q1[6],
+    !                  double const q2[6], pw85_contact_t *c)
+    function pw85_contact(r12, q1, q2, c) bind(C, name="pw85_contact") result(status)
+      import :: c_double, c_int, pw85_contact_t
+      real(c_double), intent(in) :: r12(3), q1(6), q2(6)
+      type(pw85_contact_t), intent(out) :: c
+      integer(c_int) :: status
+    end function pw85_contact
+
+    ! Batch calls: centres(3, n), q(6, n), pairs(2, m) holding 0-based (C)
+    ! indices; status(m) may be omitted (NULL).
+    ! int pw85_overlap_batch(long long n, double const *centres,
+    !     double const *q, long long m, long long const *pairs, int *overlap,
+    !     int *status, int nthreads)
+    function pw85_overlap_batch(n, centres, q, m, pairs, overlap, status, nthreads) &
+        bind(C, name="pw85_overlap_batch") result(res)
+      import :: c_double, c_int, c_long_long
+      integer(c_long_long), value :: n, m
+      real(c_double), intent(in) :: centres(3, *), q(6, *)
+      integer(c_long_long), intent(in) :: pairs(2, *)
+      integer(c_int), intent(out) :: overlap(*)
+      integer(c_int), intent(out), optional :: status(*)
+      integer(c_int), value :: nthreads
+      integer(c_int) :: res
+    end function pw85_overlap_batch
+
+    ! int pw85_contact_function_batch(long long n, double const *centres,
+    !     double const *q, long long m, long long const *pairs, double *out,
+    !     int *status, int nthreads); out(1, k) = mu^2, out(2, k) = lambda.
+    function pw85_contact_function_batch(n, centres, q, m, pairs, out, status, nthreads) &
+        bind(C, name="pw85_contact_function_batch") result(res)
+      import :: c_double, c_int, c_long_long
+      integer(c_long_long), value :: n, m
+      real(c_double), intent(in) :: centres(3, *), q(6, *)
+      integer(c_long_long), intent(in) :: pairs(2, *)
+      real(c_double), intent(out) :: out(2, *)
+      integer(c_int), intent(out), optional :: status(*)
+      integer(c_int), value :: nthreads
+      integer(c_int) :: res
+    end function pw85_contact_function_batch
+
+    ! int pw85_contact_batch(long long n, double const *centres,
+    !     double const *q, long long m, long long const *pairs,
+    !     pw85_contact_t *c, int *status, int nthreads)
+    function pw85_contact_batch(n, centres, q, m, pairs, c, status, nthreads) &
+        bind(C, name="pw85_contact_batch") result(res)
+      import :: c_double, c_int, c_long_long, pw85_contact_t
+      integer(c_long_long), value :: n, m
+      real(c_double), intent(in) :: centres(3, *), q(6, *)
+      integer(c_long_long), intent(in) :: pairs(2, *)
+      type(pw85_contact_t), intent(out) :: c(*)
+      integer(c_int), intent(out), optional :: status(*)
+      integer(c_int), value :: nthreads
+      integer(c_int) :: res
+    end function pw85_contact_batch
 
     ! ---- Distance of closest approach (issue 5, docs/dca.md) ----
     ! int pw85_dca_2d(double const u[2], double const q1[3],
