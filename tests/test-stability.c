@@ -1,0 +1,474 @@
+/* Stability of pw85_contact_function_method where methods fail (issue 7).
+ *
+ * For every method: aspect ratios 1 to 1e6 (needles and discs), near
+ * tangency (|mu^2 - 1| down to 1e-15), coincident centres, identical
+ * ellipsoids, a needle crossing a disc at right angles, nearly parallel
+ * needles, spheres of radii 1e-6 and 1e6. For each pair:
+ *  - the status is PW85_OK, PW85_ERR_INACCURATE or PW85_ERR_NO_CONVERGENCE,
+ *    mu2 and mu2_error are finite (never NaN), res.method is the method;
+ *  - if the status is PW85_OK, the relative error of mu2 is within the
+ *    method's documented accuracy (include/pw85.h): a failure is always
+ *    reported by the status, never silent;
+ *  - PW85_METHOD_DEFAULT returns PW85_OK on every pair of this file.
+ * References are independent of the library: closed forms where they exist
+ * (spheres: mu^2 = |r|^2 / (r1 + r2)^2; identical ellipsoids:
+ * mu^2 = r^T Q^{-1} r / 4 at lambda = 1/2; coaxial ellipsoids aligned along
+ * a principal axis: mu = |r| / (a1 + a2)), evaluated in __float128 from the
+ * double inputs, and otherwise a maximisation of f in __float128 (bisection
+ * on the sign of f', then Newton; Q(lambda)^{-1} by LDL^T in __float128).
+ * The largest errors per method and case are printed with g_test_message
+ * (docs/stability.md quotes them). */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <glib.h>
+
+#include "pw85.h"
+#include "testutil.h"
+
+#ifdef __SIZEOF_FLOAT128__
+typedef __float128 real;
+#else
+typedef long double real;
+#endif
+
+/* ---- references ---------------------------------------------------- */
+
+
+static real rsqrt(real x) {
+  if (x <= 0) return 0;
+  real y = (real)sqrt((double)x);
+  for (int i = 0; i < 3; ++i) y = (y + x / y) / 2;
+  return y;
+}
+
+/* f, f', f'' at lambda in extended precision; returns 0 if Q(lambda) is not
+ * positive definite. */
+static int ref_eval(real lam, const double r[3], const double q1[6], const double q2[6],
+                    real *f, real *df, real *d2f) {
+  real q[6], d[6];
+  for (int i = 0; i < 6; ++i) {
+    q[i] = (1 - lam) * (real)q1[i] + lam * (real)q2[i];
+    d[i] = (real)q2[i] - (real)q1[i];
+  }
+  real d0 = q[0];
+  if (!(d0 > 0)) return 0;
+  real l10 = q[1] / d0, l20 = q[2] / d0;
+  real d1 = q[3] - l10 * q[1];
+  if (!(d1 > 0)) return 0;
+  real e = q[4] - l20 * q[1], l21 = e / d1;
+  real d2 = q[5] - l20 * q[2] - l21 * e;
+  if (!(d2 > 0)) return 0;
+  real b[3] = {r[0], r[1], r[2]}, s[3], u[3], v[3];
+  for (int pass = 0; pass < 2; ++pass) {
+    real *x = pass ? v : s;
+    real y0 = b[0], y1 = b[1] - l10 * y0, y2 = b[2] - l20 * y0 - l21 * y1;
+    x[2] = y2 / d2;
+    x[1] = y1 / d1 - l21 * x[2];
+    x[0] = y0 / d0 - l10 * x[1] - l20 * x[2];
+    if (!pass) {
+      u[0] = d[0] * s[0] + d[1] * s[1] + d[2] * s[2];
+      u[1] = d[1] * s[0] + d[3] * s[1] + d[4] * s[2];
+      u[2] = d[2] * s[0] + d[4] * s[1] + d[5] * s[2];
+      b[0] = u[0], b[1] = u[1], b[2] = u[2];
+    }
+  }
+  real phi = (real)r[0] * s[0] + (real)r[1] * s[1] + (real)r[2] * s[2];
+  real phi1 = -(s[0] * u[0] + s[1] * u[1] + s[2] * u[2]);
+  real phi2 = 2 * (u[0] * v[0] + u[1] * v[1] + u[2] * v[2]);
+  real p = lam * (1 - lam), p1 = 1 - 2 * lam;
+  *f = p * phi;
+  *df = p1 * phi + p * phi1;
+  *d2f = -2 * phi + 2 * p1 * phi1 + p * phi2;
+  return 1;
+}
+
+/* max of the concave f on [0, 1]. */
+static double ref_mu2(const double r[3], const double q1[6], const double q2[6]) {
+  real lo = 0, hi = 1, f, df, d2f;
+  for (int k = 0; k < 45; ++k) {
+    real m = (lo + hi) / 2;
+    g_assert_true(ref_eval(m, r, q1, q2, &f, &df, &d2f));
+    if (df > 0)
+      lo = m;
+    else
+      hi = m;
+  }
+  real lam = (lo + hi) / 2;
+  for (int k = 0; k < 6; ++k) {
+    g_assert_true(ref_eval(lam, r, q1, q2, &f, &df, &d2f));
+    real next = lam - df / d2f;
+    if (!(next > lo && next < hi)) break;
+    lam = next;
+  }
+  g_assert_true(ref_eval(lam, r, q1, q2, &f, &df, &d2f));
+  return (double)f;
+}
+
+/* r^T Q^{-1} r / 4 (identical ellipsoids, lambda = 1/2). */
+static double ref_identical(const double r[3], const double q[6]) {
+  real f, df, d2f;
+  g_assert_true(ref_eval(0.5, r, q, q, &f, &df, &d2f));
+  return (double)f; /* f(1/2) = r^T Q^{-1} r / 4 */
+}
+
+/* Spheres Q1 = a I, Q2 = b I (a, b the doubles of the squared radii). */
+static double ref_spheres(const double r[3], double qa, double qb) {
+  real rr = (real)r[0] * r[0] + (real)r[1] * r[1] + (real)r[2] * r[2];
+  real s = rsqrt(qa) + rsqrt(qb);
+  return (double)(rr / (s * s));
+}
+
+/* ---- method table ---------------------------------------------------- */
+
+typedef struct {
+  const char *name;
+  int id;
+  double accuracy; /* documented relative accuracy (include/pw85.h) */
+} Method;
+
+static const Method methods[] = {
+    {"default", PW85_METHOD_DEFAULT, 1e-14},
+    {"brent", PW85_METHOD_BRENT, 1e-10},
+    {"newton", PW85_METHOD_NEWTON, 1e-12},
+    {"rational", PW85_METHOD_RATIONAL, 1e-12},
+    {"zheng", PW85_METHOD_ZHENG, 1e-9},
+};
+#define N_METHODS (sizeof methods / sizeof methods[0])
+
+typedef struct {
+  const Method *m;
+  const char *scase;
+  int n, n_flagged;
+  double max_err_ok, max_err_all;
+  double worst_param; /* parameter (aspect ratio, ...) of the largest error */
+} Stats;
+
+static void stats_init(Stats *st, const Method *m, const char *scase) {
+  memset(st, 0, sizeof *st);
+  st->m = m;
+  st->scase = scase;
+}
+
+static void stats_report(const Stats *st) {
+  g_test_message("%s/%s: %d pairs, %d flagged (status != OK), max rel. err. of OK results "
+                 "%.2e, of all results %.2e (at parameter %.3g)",
+                 st->m->name, st->scase, st->n, st->n_flagged, st->max_err_ok, st->max_err_all,
+                 st->worst_param);
+}
+
+/* Calls the method, checks the contract, updates st. Returns 0 if the
+ * method is not implemented in this build. */
+static int check(Stats *st, const double r[3], const double q1[6], const double q2[6],
+                 double ref, double param) {
+  pw85_result res;
+  int s = pw85_contact_function_method(r, q1, q2, st->m->id, &res);
+  if (s == PW85_ERR_UNKNOWN_METHOD) return 0;
+  if (!(s == PW85_OK || s == PW85_ERR_INACCURATE || s == PW85_ERR_NO_CONVERGENCE))
+    g_error("%s/%s: unexpected status %d (%s) at parameter %g", st->m->name, st->scase, s,
+            pw85_strerror(s), param);
+  g_assert_true(isfinite(res.mu2));
+  g_assert_true(isfinite(res.lambda));
+  g_assert_true(isfinite(res.mu2_error) && res.mu2_error >= 0.0);
+  g_assert_cmpint(res.method, ==, st->m->id);
+  double err = ref == 0.0 ? fabs(res.mu2) : fabs(res.mu2 - ref) / ref;
+  ++st->n;
+  if (err > st->max_err_all) {
+    st->max_err_all = err;
+    st->worst_param = param;
+  }
+  if (s == PW85_OK) {
+    if (!(err <= st->m->accuracy))
+      g_error("%s/%s: silent failure at parameter %g: status OK but rel. err. %.3e > %.0e "
+              "(mu2 %.17g, reference %.17g, mu2_error %.3e)",
+              st->m->name, st->scase, param, err, st->m->accuracy, res.mu2, ref,
+              res.mu2_error);
+    if (err > st->max_err_ok) st->max_err_ok = err;
+  } else {
+    ++st->n_flagged;
+    if (st->m->id == PW85_METHOD_DEFAULT)
+      g_error("default/%s: status %d (%s) at parameter %g, rel. err. %.3e", st->scase, s,
+              pw85_strerror(s), param, err);
+  }
+  return 1;
+}
+
+/* ---- scenes ------------------------------------------------------------ */
+
+static const double aspects[] = {1, 3, 10, 30, 1e2, 1e3, 1e4, 1e5, 1e6};
+#define N_ASPECTS (sizeof aspects / sizeof aspects[0])
+
+/* Needle (1, 1/k, 1/k) or disc (1, 1, 1/k), random orientation. */
+static void shape(GRand *rng, double k, int disc, double q[6]) {
+  double radii[3] = {1.0, disc ? 1.0 : 1.0 / k, 1.0 / k}, axes[9];
+  random_axes(rng, axes);
+  make_q(radii, axes, q);
+}
+
+static void random_dir(GRand *rng, double scale, double r[3]) {
+  double n = 0;
+  do {
+    for (int i = 0; i < 3; ++i) r[i] = g_rand_double_range(rng, -1, 1);
+    n = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+  } while (n < 0.1 || n > 1);
+  for (int i = 0; i < 3; ++i) r[i] *= scale / n;
+}
+
+/* Aspect-ratio sweep: random needles and discs, random r from overlap to
+ * apart; general references. */
+static void test_aspect(gconstpointer data) {
+  const Method *m = data;
+  GRand *rng = g_rand_new_with_seed(7001);
+  Stats st;
+  stats_init(&st, m, "aspect");
+  for (size_t a = 0; a < N_ASPECTS; ++a)
+    for (int disc1 = 0; disc1 < 2; ++disc1)
+      for (int disc2 = 0; disc2 < 2; ++disc2)
+        for (int rep = 0; rep < 6; ++rep) {
+          double q1[6], q2[6], r[3];
+          shape(rng, aspects[a], disc1, q1);
+          shape(rng, aspects[a], disc2, q2);
+          random_dir(rng, pow(10.0, g_rand_double_range(rng, -2, 0.5)) * 2.0, r);
+          if (!check(&st, r, q1, q2, ref_mu2(r, q1, q2), aspects[a])) goto out;
+        }
+  stats_report(&st);
+out:
+  g_rand_free(rng);
+}
+
+/* Identical ellipsoids: mu^2 = r^T Q^{-1} r / 4. */
+static void test_identical(gconstpointer data) {
+  const Method *m = data;
+  GRand *rng = g_rand_new_with_seed(7002);
+  Stats st;
+  stats_init(&st, m, "identical");
+  for (size_t a = 0; a < N_ASPECTS; ++a)
+    for (int disc = 0; disc < 2; ++disc)
+      for (int rep = 0; rep < 4; ++rep) {
+        double q[6], r[3];
+        shape(rng, aspects[a], disc, q);
+        random_dir(rng, g_rand_double_range(rng, 0.01, 3), r);
+        if (!check(&st, r, q, q, ref_identical(r, q), aspects[a])) goto out;
+      }
+  stats_report(&st);
+out:
+  g_rand_free(rng);
+}
+
+/* Coaxial ellipsoids aligned along a principal axis (x): Q_i diagonal,
+ * r = (d, 0, 0): mu = d / (a1 + a2), a_i = sqrt(Q_i[0]). The other
+ * semi-axes make needles and discs of aspect ratio up to 1e6. */
+static void test_coaxial(gconstpointer data) {
+  const Method *m = data;
+  Stats st;
+  stats_init(&st, m, "coaxial");
+  for (size_t a = 0; a < N_ASPECTS; ++a)
+    for (int kind = 0; kind < 4; ++kind) {
+      double k = aspects[a];
+      /* kind 0: needles along x; 1: discs normal to x; 2: needle along x vs
+       * disc normal to x; 3: needles across x (long axes y and z). */
+      double r1[3], r2[3];
+      switch (kind) {
+        case 0: r1[0] = 1, r1[1] = 1 / k, r1[2] = 1 / k; r2[0] = 2, r2[1] = 2 / k, r2[2] = 1 / k; break;
+        case 1: r1[0] = 1 / k, r1[1] = 1, r1[2] = 1; r2[0] = 1 / k, r2[1] = 2, r2[2] = 3; break;
+        case 2: r1[0] = 1, r1[1] = 1 / k, r1[2] = 1 / k; r2[0] = 1 / k, r2[1] = 1, r2[2] = 1; break;
+        default: r1[0] = 1 / k, r1[1] = 1, r1[2] = 1 / k; r2[0] = 1 / k, r2[1] = 1 / k, r2[2] = 1; break;
+      }
+      double q1[6] = {r1[0] * r1[0], 0, 0, r1[1] * r1[1], 0, r1[2] * r1[2]};
+      double q2[6] = {r2[0] * r2[0], 0, 0, r2[1] * r2[1], 0, r2[2] * r2[2]};
+      for (int j = 0; j < 5; ++j) {
+        double d = (rsqrt(q1[0]) + rsqrt(q2[0])) * (double)(0.1 + 0.5 * j);
+        double r[3] = {d, 0, 0};
+        real s = rsqrt(q1[0]) + rsqrt(q2[0]);
+        double ref = (double)((real)d * d / (s * s));
+        if (!check(&st, r, q1, q2, ref, k)) return;
+      }
+    }
+  stats_report(&st);
+}
+
+/* Near tangency: spheres and coaxial ellipsoids at mu^2 = (1 + eps)^2, eps
+ * down to 1e-15 (both signs). */
+static void test_tangency(gconstpointer data) {
+  const Method *m = data;
+  Stats st;
+  stats_init(&st, m, "tangency");
+  for (int e = 1; e <= 15; ++e)
+    for (int sign = -1; sign <= 1; sign += 2)
+      for (int kind = 0; kind < 2; ++kind) {
+        double eps = sign * pow(10.0, -e);
+        double q1[6], q2[6];
+        if (kind == 0) {
+          double a = 1.5, b = 0.25;
+          double qq1[6] = {a * a, 0, 0, a * a, 0, a * a}, qq2[6] = {b * b, 0, 0, b * b, 0, b * b};
+          memcpy(q1, qq1, sizeof q1);
+          memcpy(q2, qq2, sizeof q2);
+        } else {
+          double qq1[6] = {1, 0, 0, 1e-4, 0, 1e-6}, qq2[6] = {0.25, 0, 0, 4, 0, 9};
+          memcpy(q1, qq1, sizeof q1);
+          memcpy(q2, qq2, sizeof q2);
+        }
+        double d = (sqrt(q1[0]) + sqrt(q2[0])) * (1 + eps);
+        double r[3] = {d, 0, 0};
+        real s = rsqrt(q1[0]) + rsqrt(q2[0]);
+        double ref = (double)((real)d * d / (s * s));
+        if (!check(&st, r, q1, q2, ref, eps)) return;
+      }
+  stats_report(&st);
+}
+
+/* Coincident centres: mu^2 = 0 exactly. */
+static void test_coincident(gconstpointer data) {
+  const Method *m = data;
+  GRand *rng = g_rand_new_with_seed(7003);
+  Stats st;
+  stats_init(&st, m, "coincident");
+  for (size_t a = 0; a < N_ASPECTS; ++a) {
+    double q1[6], q2[6], r[3] = {0, 0, 0};
+    shape(rng, aspects[a], 0, q1);
+    shape(rng, aspects[a], 1, q2);
+    pw85_result res;
+    int s = pw85_contact_function_method(r, q1, q2, m->id, &res);
+    if (s == PW85_ERR_UNKNOWN_METHOD) goto out;
+    g_assert_cmpint(s, ==, PW85_OK);
+    g_assert_cmpfloat(res.mu2, ==, 0.0);
+    g_assert_cmpfloat(res.mu2_error, ==, 0.0);
+    g_assert_true(res.lambda >= 0.0 && res.lambda <= 1.0);
+    ++st.n;
+  }
+  stats_report(&st);
+out:
+  g_rand_free(rng);
+}
+
+/* Needle along z crossing a disc normal to z (in the plane z = 0): centres
+ * offset along random directions. */
+static void test_needle_disc(gconstpointer data) {
+  const Method *m = data;
+  GRand *rng = g_rand_new_with_seed(7004);
+  Stats st;
+  stats_init(&st, m, "needle_disc");
+  for (size_t a = 0; a < N_ASPECTS; ++a) {
+    double k = aspects[a];
+    double q1[6] = {1 / (k * k), 0, 0, 1 / (k * k), 0, 1}; /* needle along z */
+    double q2[6] = {1, 0, 0, 1, 0, 1 / (k * k)};           /* disc normal to z */
+    for (int rep = 0; rep < 6; ++rep) {
+      double r[3];
+      random_dir(rng, g_rand_double_range(rng, 0.05, 4), r);
+      if (!check(&st, r, q1, q2, ref_mu2(r, q1, q2), k)) goto out;
+    }
+  }
+  stats_report(&st);
+out:
+  g_rand_free(rng);
+}
+
+/* Nearly parallel needles of aspect ratio 1e3 and 1e5 at angles 1e-1 to
+ * 1e-8 rad, side by side and end to end. */
+static void test_parallel_needles(gconstpointer data) {
+  const Method *m = data;
+  Stats st;
+  stats_init(&st, m, "parallel_needles");
+  const double ks[] = {1e3, 1e5};
+  for (int ik = 0; ik < 2; ++ik)
+    for (int e = 1; e <= 8; ++e) {
+      double k = ks[ik], th = pow(10.0, -e);
+      double radii[3] = {1.0, 1.0 / k, 1.0 / k};
+      double ax1[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+      double c = cos(th), s = sin(th);
+      double ax2[9] = {c, s, 0, -s, c, 0, 0, 0, 1};
+      double q1[6], q2[6];
+      make_q(radii, ax1, q1);
+      make_q(radii, ax2, q2);
+      double rs[3][3] = {{0, 3.0 / k, 0}, {2.5, 0, 0}, {0.3, 1.0 / k, 1.5 / k}};
+      for (int j = 0; j < 3; ++j)
+        if (!check(&st, rs[j], q1, q2, ref_mu2(rs[j], q1, q2), th)) return;
+    }
+  stats_report(&st);
+}
+
+/* Spheres of radii 1e-6 and 1e6 (and both equal), several distances. */
+static void test_spheres(gconstpointer data) {
+  const Method *m = data;
+  GRand *rng = g_rand_new_with_seed(7005);
+  Stats st;
+  stats_init(&st, m, "spheres");
+  const double radii[][2] = {{1e-6, 1e6}, {1e6, 1e-6}, {1e-6, 1e-6}, {1e6, 1e6}, {1, 1e-6}};
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 6; ++j) {
+      double a = radii[i][0] * radii[i][0], b = radii[i][1] * radii[i][1];
+      double q1[6] = {a, 0, 0, a, 0, a}, q2[6] = {b, 0, 0, b, 0, b}, r[3];
+      random_dir(rng, (radii[i][0] + radii[i][1]) * pow(10.0, -2.0 + 0.8 * j), r);
+      if (!check(&st, r, q1, q2, ref_spheres(r, a, b), radii[i][0] / radii[i][1])) goto out;
+    }
+  stats_report(&st);
+out:
+  g_rand_free(rng);
+}
+
+/* Invalid method ids and bad input: status and NaN-filled result. */
+static void test_errors(void) {
+  double r[3] = {1, 0, 0}, q[6] = {1, 0, 0, 1, 0, 1}, bad[6] = {1, 0, 0, -1, 0, 1};
+  pw85_result res;
+  g_assert_cmpint(pw85_contact_function_method(r, q, q, -1, &res), ==, PW85_ERR_UNKNOWN_METHOD);
+  g_assert_true(isnan(res.mu2) && isnan(res.lambda) && isnan(res.mu2_error));
+  g_assert_cmpint(pw85_contact_function_method(r, q, q, 99, &res), ==, PW85_ERR_UNKNOWN_METHOD);
+  g_assert_true(isnan(res.mu2));
+  g_assert_cmpint(pw85_contact_function_method(r, q, bad, PW85_METHOD_DEFAULT, &res), ==,
+                  PW85_ERR_NOT_SPD);
+  g_assert_true(isnan(res.mu2) && isnan(res.mu2_error));
+  g_assert_cmpint(res.iterations, ==, 0);
+  g_assert_cmpint(pw85_contact_function_method(NULL, q, q, PW85_METHOD_DEFAULT, &res), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+  g_assert_true(isnan(res.mu2));
+  r[1] = NAN;
+  g_assert_cmpint(pw85_contact_function_method(r, q, q, PW85_METHOD_DEFAULT, &res), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_contact_function_method(r, q, q, PW85_METHOD_DEFAULT, NULL), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+}
+
+/* BRENT is pw85_contact_function(): same mu2 and lambda bit for bit. */
+static void test_brent_is_legacy(void) {
+  GRand *rng = g_rand_new_with_seed(7006);
+  for (int i = 0; i < 50; ++i) {
+    double q1[6], q2[6], r[3], out[2];
+    shape(rng, 10, i & 1, q1);
+    shape(rng, 10, (i >> 1) & 1, q2);
+    random_dir(rng, 1.0, r);
+    pw85_result res;
+    int s1 = pw85_contact_function(r, q1, q2, out);
+    int s2 = pw85_contact_function_method(r, q1, q2, PW85_METHOD_BRENT, &res);
+    g_assert_cmpint(s1, ==, PW85_OK);
+    g_assert_true(s2 == PW85_OK || s2 == PW85_ERR_INACCURATE);
+    g_assert_cmpfloat(res.mu2, ==, out[0]);
+    g_assert_cmpfloat(res.lambda, ==, out[1]);
+  }
+  g_rand_free(rng);
+}
+
+int main(int argc, char **argv) {
+  g_test_init(&argc, &argv, NULL);
+  static const struct {
+    const char *name;
+    GTestDataFunc fn;
+  } cases[] = {
+      {"aspect", test_aspect},           {"identical", test_identical},
+      {"coaxial", test_coaxial},         {"tangency", test_tangency},
+      {"coincident", test_coincident},   {"needle_disc", test_needle_disc},
+      {"parallel_needles", test_parallel_needles}, {"spheres", test_spheres},
+  };
+  for (size_t i = 0; i < N_METHODS; ++i)
+    for (size_t j = 0; j < sizeof cases / sizeof cases[0]; ++j) {
+      char *path = g_strdup_printf("/contact_function_method/%s/%s", methods[i].name,
+                                   cases[j].name);
+      g_test_add_data_func(path, &methods[i], cases[j].fn);
+      g_free(path);
+    }
+  g_test_add_func("/contact_function_method/errors", test_errors);
+  g_test_add_func("/contact_function_method/brent/same_as_pw85_contact_function",
+                  test_brent_is_legacy);
+  return g_test_run();
+}
