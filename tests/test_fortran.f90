@@ -20,13 +20,14 @@ program test_fortran
   integer(c_int) :: status
   integer :: ntest = 0, nfail = 0
   type(pw85_contact_t) :: contact
+  type(pw85_result) :: mres  ! issue 7
   real(c_double) :: centres(3, 2), qs(6, 2)
   integer(c_long_long) :: pairs(2, 2)
   integer(c_int) :: verdicts(2)
   character(len=:), allocatable :: version, message_ok, message_spd
 
   write (*, '(a)') 'TAP version 13'
-  write (*, '(a)') '1..13'
+  write (*, '(a)') '1..15'
 
   ! Version: the loaded library and the module constant agree.
   version = pw85_version_string()
@@ -112,6 +113,18 @@ program test_fortran
                               nthreads=1_c_int)
   call check(status == PW85_OK .and. all(verdicts == 0), &
              'pw85_overlap_batch: both orders of the tutorial pair give 0 (status omitted)')
+
+  ! Method-selecting contact function (issue 7): the tutorial pair by the
+  ! default method; an unknown method id.
+  status = pw85_contact_function_method(r12, q1, q2, PW85_METHOD_DEFAULT, mres)
+  call check(status == PW85_OK .and. mres%method == PW85_METHOD_DEFAULT .and. &
+             abs(mres%mu2 - MU2_REF) <= RTOL * MU2_REF .and. &
+             abs(mres%lambda - LAMBDA_REF) <= 1.0e-8_c_double .and. &
+             mres%mu2_error >= 0.0_c_double .and. mres%mu2_error <= 1.0e-14_c_double * mres%mu2, &
+             'pw85_contact_function_method: DEFAULT on the tutorial pair (mu^2, lambda, error)')
+  status = pw85_contact_function_method(r12, q1, q2, 99_c_int, mres)
+  call check(status == PW85_ERR_UNKNOWN_METHOD .and. ieee_is_nan(mres%mu2), &
+             'pw85_contact_function_method: unknown method gives PW85_ERR_UNKNOWN_METHOD, NaN')
 
   ! Main-program allocatables are not freed automatically at the end; free
   ! them so that LeakSanitizer (sanitizer builds) sees no leak.

@@ -10,6 +10,9 @@ Loads the built library with dlopen and checks, printing TAP:
    relative;
  - r12 = 0 gives mu^2 = 0;
  - NaN in r12 gives PW85_ERR_INVALID_ARGUMENT and a NaN-filled output.
+ - pw85_contact_function_method (issue 7) through a ctypes Structure
+   mirroring pw85_result: the tutorial pair by PW85_METHOD_DEFAULT, and an
+   unknown method id.
 Exits with 77 (skipped) when NumPy is missing, or when the build system sets
 PW85_PYTHON_TEST_SKIP (a sanitizer build whose runtime it cannot preload).
 """
@@ -31,6 +34,13 @@ except ImportError:
 MU2_REF = 3.362706040638343
 LAMBDA_REF = 0.1668589553405904
 RTOL = 1e-12
+
+
+class Pw85Result(ctypes.Structure):
+    """Mirror of struct pw85_result of pw85.h (issue 7)."""
+    _fields_ = [("mu2", ctypes.c_double), ("lambda_", ctypes.c_double),
+                ("mu2_error", ctypes.c_double), ("iterations", ctypes.c_int),
+                ("method", ctypes.c_int)]
 
 
 def header_macros(path):
@@ -60,6 +70,9 @@ def load(path):
     lib.pw85_spheroid.restype = None
     lib.pw85_contact_function.argtypes = [vec, sym, sym, out2]
     lib.pw85_contact_function.restype = ctypes.c_int
+    lib.pw85_contact_function_method.argtypes = [vec, sym, sym, ctypes.c_int,
+                                                 ctypes.POINTER(Pw85Result)]
+    lib.pw85_contact_function_method.restype = ctypes.c_int
     return lib
 
 
@@ -82,7 +95,7 @@ def main():
     lib = load(os.environ["LIBPW85"])
     tap = Tap()
     print("TAP version 13")
-    print("1..7")
+    print("1..9")
 
     version = lib.pw85_version().decode()
     tap.check(version == macros["PW85_VERSION"].strip('"'),
@@ -114,6 +127,21 @@ def main():
 
     tap.check(lib.pw85_strerror(invalid) != lib.pw85_strerror(ok_code),
               "pw85_strerror distinguishes PW85_OK and an error")
+
+    # issue 7: method-selecting contact function.
+    res = Pw85Result()
+    default = int(macros["PW85_METHOD_DEFAULT"])
+    status = lib.pw85_contact_function_method(x2 - x1, q1, q2, default, ctypes.byref(res))
+    tap.check(status == ok_code and res.method == default
+              and abs(res.mu2 - MU2_REF) <= RTOL * MU2_REF
+              and abs(res.lambda_ - LAMBDA_REF) <= 1e-8
+              and 0.0 <= res.mu2_error <= 1e-14 * res.mu2,
+              f"pw85_contact_function_method DEFAULT: status {status}, mu^2 = {res.mu2!r}, "
+              f"lambda = {res.lambda_!r}, mu2_error = {res.mu2_error!r}")
+    unknown = int(macros["PW85_ERR_UNKNOWN_METHOD"].strip("()"))
+    status = lib.pw85_contact_function_method(x2 - x1, q1, q2, 99, ctypes.byref(res))
+    tap.check(status == unknown and np.isnan(res.mu2),
+              f"pw85_contact_function_method, method 99: status {status}, mu^2 = {res.mu2!r}")
     return 1 if tap.failed else 0
 
 

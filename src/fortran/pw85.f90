@@ -56,6 +56,21 @@ module pw85
     real(c_double) :: depth_n  ! depth projected on the normal
   end type pw85_contact_t
 
+  ! Method-selecting contact function (issue 7, docs/methods.md): the
+  ! PW85_METHOD_* values and the mirror of struct pw85_result of pw85.h.
+  integer(c_int), parameter :: PW85_METHOD_DEFAULT = 0
+  integer(c_int), parameter :: PW85_METHOD_BRENT = 1
+  integer(c_int), parameter :: PW85_METHOD_NEWTON = 2
+  integer(c_int), parameter :: PW85_METHOD_RATIONAL = 3
+  integer(c_int), parameter :: PW85_METHOD_ZHENG = 4
+  type, bind(c) :: pw85_result
+    real(c_double) :: mu2         ! contact function mu^2
+    real(c_double) :: lambda      ! maximiser of f on [0, 1]
+    real(c_double) :: mu2_error   ! estimate of the absolute error on mu2
+    integer(c_int) :: iterations  ! iterations of the method
+    integer(c_int) :: method      ! method actually used (PW85_METHOD_*)
+  end type pw85_result
+
   interface
     ! size_t strlen(const char *s) of the C library.
     function c_strlen(s) bind(C, name="strlen") result(n)
@@ -137,6 +152,18 @@ module pw85
     end function pw85_contact_function
 
     ! -- interfaces added by later features go below --
+
+    ! ---- Method-selecting contact function (issue 7, docs/methods.md) ----
+    ! int pw85_contact_function_method(double const r12[3], double const q1[6],
+    !     double const q2[6], int method, pw85_result *res)
+    function pw85_contact_function_method(r12, q1, q2, method, res) &
+        bind(C, name="pw85_contact_function_method") result(status)
+      import :: c_double, c_int, pw85_result
+      real(c_double), intent(in) :: r12(3), q1(6), q2(6)
+      integer(c_int), value :: method
+      type(pw85_result), intent(out) :: res
+      integer(c_int) :: status
+    end function pw85_contact_function_method
 
     ! ---- Overlap, contact geometry and batch calls (issue 6, docs/overlap.md,
     ! docs/contact_geometry.md, docs/batch.md) ----
