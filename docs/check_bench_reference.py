@@ -27,9 +27,11 @@ def sym(v):
 
 
 def mu2(r, q1, q2):
-    r = matrix([mpf(x) for x in r])
-    Q1 = sym([mpf(x) for x in q1])
-    Q2 = sym([mpf(x) for x in q2])
+    # float() first: the %.17g strings round-trip to the exact doubles, which
+    # mpf(str) would not reproduce (it reads the decimal, not the double).
+    r = matrix([mpf(float(x)) for x in r])
+    Q1 = sym([mpf(float(x)) for x in q1])
+    Q2 = sym([mpf(float(x)) for x in q2])
     D = Q2 - Q1
 
     def derivs(lam):
