@@ -236,9 +236,11 @@ PW85_API int pw85_dca_ex(double const u[PW85_DIM], double const q1[PW85_SYM],
 /* ---- Method-selecting contact function (issue 7) ------------------------
  * Methods of pw85_contact_function_method(); the values are pinned (ABI).
  * Their formulas, cost and accuracy are in docs/methods.md. */
-/* The recommended method: Halley iteration in double, re-evaluated in
- * double-double when its error estimate exceeds 4e-15 mu2. Documented
- * relative accuracy of mu2: 1e-14. */
+/* The recommended method: safeguarded Halley iteration in double (adjugate
+ * of Q(lambda)); when the estimated error exceeds 4e-15 mu2, f is
+ * re-evaluated by a compensated (double-double) stationary form, then if
+ * needed by L D L^T in double-double. Documented relative accuracy of mu2:
+ * 1e-14. */
 #define PW85_METHOD_DEFAULT 0
 /* pw85 1.0's algorithm, what pw85_contact_function() computes (Brent, then
  * Newton on the residual). Documented relative accuracy: 1e-10. */
@@ -263,7 +265,8 @@ typedef struct pw85_result {
   double mu2;       /* contact function mu^2 (0 when r12 = 0) */
   double lambda;    /* maximiser of f on [0, 1] (0.5 when r12 = 0) */
   double mu2_error; /* estimate of the absolute error on mu2 */
-  int iterations;   /* iterations of the method (method-specific meaning) */
+  int iterations;   /* iterations of the method: evaluations of f for
+                       DEFAULT, NEWTON, RATIONAL, Brent iterations for BRENT */
   int method;       /* method actually used (a PW85_METHOD_* value; DEFAULT
                        for PW85_METHOD_DEFAULT) */
 } pw85_result;
