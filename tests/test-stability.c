@@ -3,7 +3,8 @@
  * For every method: aspect ratios 1 to 1e6 (needles and discs), near
  * tangency (|mu^2 - 1| down to 1e-15), coincident centres, identical
  * ellipsoids, a needle crossing a disc at right angles, nearly parallel
- * needles, spheres of radii 1e-6 and 1e6. For each pair:
+ * needles, spheres of radii 1e-6 and 1e6, magnitudes 1e-150 to 1e150. For
+ * each pair:
  *  - the status is PW85_OK, PW85_ERR_INACCURATE or PW85_ERR_NO_CONVERGENCE,
  *    mu2 and mu2_error are finite (never NaN), res.method is the method;
  *  - if the status is PW85_OK, the relative error of mu2 is within the
@@ -408,6 +409,33 @@ out:
   g_rand_free(rng);
 }
 
+/* Extreme magnitudes: the same shapes scaled by 1e-150 ... 1e150 (Q by the
+ * square), so that products of entries of Q overflow or underflow in double
+ * unless the method rescales. */
+static void test_scales(gconstpointer data) {
+  const Method *m = data;
+  GRand *rng = g_rand_new_with_seed(7007);
+  Stats st;
+  stats_init(&st, m, "scales");
+  const double scales[] = {1e-150, 1e-60, 1e-20, 1e20, 1e60, 1e150};
+  for (int i = 0; i < 6; ++i)
+    for (int a = 0; a < 4; ++a)
+      for (int rep = 0; rep < 3; ++rep) {
+        double q1[6], q2[6], r[3], sc = scales[i], k = pow(10.0, a);
+        shape(rng, k, rep & 1, q1);
+        shape(rng, k, (rep >> 1) & 1, q2);
+        for (int j = 0; j < 6; ++j) {
+          q1[j] *= sc * sc;
+          q2[j] *= sc * sc;
+        }
+        random_dir(rng, sc * pow(10.0, g_rand_double_range(rng, -2, 0.5)) * 2.0, r);
+        if (!check(&st, r, q1, q2, ref_mu2(r, q1, q2), sc)) goto out;
+      }
+  stats_report(&st);
+out:
+  g_rand_free(rng);
+}
+
 /* Invalid method ids and bad input: status and NaN-filled result. */
 static void test_errors(void) {
   double r[3] = {1, 0, 0}, q[6] = {1, 0, 0, 1, 0, 1}, bad[6] = {1, 0, 0, -1, 0, 1};
@@ -459,6 +487,7 @@ int main(int argc, char **argv) {
       {"coaxial", test_coaxial},         {"tangency", test_tangency},
       {"coincident", test_coincident},   {"needle_disc", test_needle_disc},
       {"parallel_needles", test_parallel_needles}, {"spheres", test_spheres},
+      {"scales", test_scales},
   };
   for (size_t i = 0; i < N_METHODS; ++i)
     for (size_t j = 0; j < sizeof cases / sizeof cases[0]; ++j) {

@@ -25,7 +25,7 @@ bool ldl_positive(double const *a) noexcept {
   double const d1 = a[3] - l1 * a[1];
   if (!(d1 > 0.0)) return false;
   double const e = a[4] - l2 * a[1];
-  double const d2 = a[5] - l2 * a[2] - e * e / d1;
+  double const d2 = a[5] - l2 * a[2] - (e / d1) * e;  // no overflow of e * e
   return d2 > 0.0 && std::isfinite(d2);
 }
 
