@@ -41,28 +41,34 @@ void make_q(const double radii[3], const double axes[9], double q[6]) {
     }
 }
 
+/* Determinants and adjugates use __float128 (113-bit significand): the
+ * products of three doubles then carry almost no rounding, so the
+ * references stay accurate for condition numbers up to ~1e12. */
+typedef __float128 hp;
+
 /* Symmetric matrix entries (i, j) from the upper-triangle storage. */
-static long double entry(const long double a[6], int i, int j) {
+static hp entry(const long double a[6], int i, int j) {
   static const int index[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
   return a[index[i][j]];
 }
 
 static long double det_ld(const long double a[6]) {
-  return entry(a, 0, 0) * (entry(a, 1, 1) * entry(a, 2, 2) - entry(a, 1, 2) * entry(a, 2, 1)) -
+  return (long double)(entry(a, 0, 0) * (entry(a, 1, 1) * entry(a, 2, 2) - entry(a, 1, 2) * entry(a, 2, 1)) -
          entry(a, 0, 1) * (entry(a, 1, 0) * entry(a, 2, 2) - entry(a, 1, 2) * entry(a, 2, 0)) +
-         entry(a, 0, 2) * (entry(a, 1, 0) * entry(a, 2, 1) - entry(a, 1, 1) * entry(a, 2, 0));
+         entry(a, 0, 2) * (entry(a, 1, 0) * entry(a, 2, 1) - entry(a, 1, 1) * entry(a, 2, 0)));
 }
 
 /* x^T adj(A) x, adj(A)_ij = cofactor C_ji = C_ij for symmetric A. */
 static long double xT_adj_x_ld(const long double a[6], const long double x[3]) {
-  long double c00 = entry(a, 1, 1) * entry(a, 2, 2) - entry(a, 1, 2) * entry(a, 1, 2);
-  long double c11 = entry(a, 0, 0) * entry(a, 2, 2) - entry(a, 0, 2) * entry(a, 0, 2);
-  long double c22 = entry(a, 0, 0) * entry(a, 1, 1) - entry(a, 0, 1) * entry(a, 0, 1);
-  long double c01 = entry(a, 0, 2) * entry(a, 1, 2) - entry(a, 0, 1) * entry(a, 2, 2);
-  long double c02 = entry(a, 0, 1) * entry(a, 1, 2) - entry(a, 0, 2) * entry(a, 1, 1);
-  long double c12 = entry(a, 0, 1) * entry(a, 0, 2) - entry(a, 0, 0) * entry(a, 1, 2);
-  return c00 * x[0] * x[0] + c11 * x[1] * x[1] + c22 * x[2] * x[2] +
-         2.0L * (c01 * x[0] * x[1] + c02 * x[0] * x[2] + c12 * x[1] * x[2]);
+  hp const x0 = x[0], x1 = x[1], x2 = x[2];
+  hp c00 = entry(a, 1, 1) * entry(a, 2, 2) - entry(a, 1, 2) * entry(a, 1, 2);
+  hp c11 = entry(a, 0, 0) * entry(a, 2, 2) - entry(a, 0, 2) * entry(a, 0, 2);
+  hp c22 = entry(a, 0, 0) * entry(a, 1, 1) - entry(a, 0, 1) * entry(a, 0, 1);
+  hp c01 = entry(a, 0, 2) * entry(a, 1, 2) - entry(a, 0, 1) * entry(a, 2, 2);
+  hp c02 = entry(a, 0, 1) * entry(a, 1, 2) - entry(a, 0, 2) * entry(a, 1, 1);
+  hp c12 = entry(a, 0, 1) * entry(a, 0, 2) - entry(a, 0, 0) * entry(a, 1, 2);
+  return (long double)(c00 * x0 * x0 + c11 * x1 * x1 + c22 * x2 * x2 +
+                       2 * (c01 * x0 * x1 + c02 * x0 * x2 + c12 * x1 * x2));
 }
 
 long double xT_inv_x_ld(const double a[6], const long double x[3]) {

@@ -25,6 +25,7 @@
 
 #include "contact.hpp"
 #include "f_cholesky.hpp"
+#include "f_dd.hpp"
 
 namespace pw85 {
 
@@ -137,6 +138,18 @@ Status contact_brent(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in,
   if (std::fabs(current.g) < std::fabs(best.g)) {
     best = current;
     best_lambda = lambda;
+  }
+  // mu^2 = f(lambda) in the stationary form lambda (1 - lambda)(2 r^T s -
+  // s^T Q s) with compensated sums (src/core/f_dd.hpp): the error of the
+  // double-precision solve s = Q^{-1} r then enters only to second order,
+  // instead of growing with the condition number of Q(lambda). The
+  // iteration itself is pw85 1.0's; only this last evaluation differs.
+  {
+    Sym3 l;
+    if (cholesky(interpolate(p.q1, p.q2, best_lambda), l)) {
+      double const f = f_stationary(best_lambda, p.r, p.q1, p.q2, cholesky_solve(l, p.r));
+      if (std::isfinite(f) && f >= 0.0) best.f = f;
+    }
   }
   res.mu2 = std::ldexp(best.f, mu2_exponent);
   res.lambda = best_lambda;
