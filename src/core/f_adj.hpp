@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "f_derivatives.hpp"
 #include "sym3.hpp"
 
 namespace pw85 {
@@ -43,19 +44,8 @@ inline bool f_eval_adj(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const 
   Vec3 const cu = multiply(c, u);
   Vec3 const v{{cu[0] * id, cu[1] * id, cu[2] * id}};
   Vec3 const w = multiply(d, v);
-  double const phi = dot(r, s);
-  double const phi1 = -dot(s, u);
-  double const phi2 = 2.0 * dot(u, v);
-  double const phi3 = -6.0 * dot(v, w);
-  double const p = lambda * (1.0 - lambda);
-  double const p1 = 1.0 - 2.0 * lambda;
-  e.phi = phi;
-  e.dphi = phi1;
-  e.f = p * phi;
-  e.df = p1 * phi + p * phi1;
-  e.d2f = -2.0 * phi + 2.0 * p1 * phi1 + p * phi2;
-  e.d3f = -6.0 * phi1 + 3.0 * p1 * phi2 + p * phi3;
-  return phi > 0.0 && std::isfinite(e.f) && std::isfinite(e.df) && std::isfinite(e.d2f) &&
+  set_f_derivatives(lambda, r, s, u, v, w, e);
+  return e.phi > 0.0 && std::isfinite(e.f) && std::isfinite(e.df) && std::isfinite(e.d2f) &&
          std::isfinite(e.d3f);
 }
 

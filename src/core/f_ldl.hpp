@@ -24,6 +24,7 @@
 
 #include <cmath>
 
+#include "f_derivatives.hpp"
 #include "sym3.hpp"
 
 namespace pw85 {
@@ -82,18 +83,7 @@ inline bool f_eval(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   Vec3 const u = multiply(d, e.s);
   Vec3 const v = ldl_solve(e.l, u);
   Vec3 const w = multiply(d, v);
-  double const phi = dot(r, e.s);
-  double const phi1 = -dot(e.s, u);
-  double const phi2 = 2.0 * dot(u, v);
-  double const phi3 = -6.0 * dot(v, w);
-  double const p = lambda * (1.0 - lambda);
-  double const p1 = 1.0 - 2.0 * lambda;
-  e.phi = phi;
-  e.dphi = phi1;
-  e.f = p * phi;
-  e.df = p1 * phi + p * phi1;
-  e.d2f = -2.0 * phi + 2.0 * p1 * phi1 + p * phi2;
-  e.d3f = -6.0 * phi1 + 3.0 * p1 * phi2 + p * phi3;
+  set_f_derivatives(lambda, r, e.s, u, v, w, e);
   return std::isfinite(e.f) && std::isfinite(e.df) && std::isfinite(e.d2f) &&
          std::isfinite(e.d3f);
 }

@@ -1,0 +1,31 @@
+// f(lambda) = p(lambda) phi(lambda) with p = lambda (1 - lambda) and
+// phi = r^T Q^{-1} r, and its derivatives up to the third by Leibniz's rule.
+// With s = Q^{-1} r, u = D s, v = Q^{-1} u, w = D v (D = Q2 - Q1):
+//   phi' = -s^T u,  phi'' = 2 u^T v,  phi''' = -6 v^T w
+// (pw85 documentation, chapter 4, eqs. (5)-(9), one order further).
+// Shared by the adjugate (f_adj.hpp) and LDL^T (f_ldl.hpp) evaluations,
+// whose result structs both have the fields written here.
+#pragma once
+
+#include "sym3.hpp"
+
+namespace pw85 {
+
+template <class Eval>
+inline void set_f_derivatives(double lambda, Vec3 const &r, Vec3 const &s, Vec3 const &u,
+                              Vec3 const &v, Vec3 const &w, Eval &e) noexcept {
+  double const phi = dot(r, s);
+  double const phi1 = -dot(s, u);
+  double const phi2 = 2.0 * dot(u, v);
+  double const phi3 = -6.0 * dot(v, w);
+  double const p = lambda * (1.0 - lambda);
+  double const p1 = 1.0 - 2.0 * lambda;
+  e.phi = phi;
+  e.dphi = phi1;
+  e.f = p * phi;
+  e.df = p1 * phi + p * phi1;
+  e.d2f = -2.0 * phi + 2.0 * p1 * phi1 + p * phi2;
+  e.d3f = -6.0 * phi1 + 3.0 * p1 * phi2 + p * phi3;
+}
+
+}  // namespace pw85
