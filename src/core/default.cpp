@@ -89,10 +89,14 @@ Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
         double const edf = p1 * dot(ar, E) + 2.0 * p * dot(as, multiply(da, E)) +
                            4.0 * kU * (p1 * e.phi + p * std::fabs(e.dphi));
         double const h = tiny ? 0.0 : step;
-        double const trunc = std::fabs(e.d3f * h * h * h) / 6.0;
+        // Quartic Taylor model at lambda (eq. (M18)); its truncation is
+        // estimated by its last term, counted twice below.
+        double const h2 = h * h;
+        double const trunc = std::fabs(e.d4f * h2 * h2) / 24.0;
         double const err_l = edf * std::fabs(h) + edf * edf / (2.0 * a) + 2.0 * trunc;
         if (err_l <= kExtrapBudget * e.f || std::fabs(e.df) <= 2.0 * edf || tiny) {
-          double const corr = h * (e.df + h * (0.5 * e.d2f + h * e.d3f / 6.0));
+          double const corr =
+              h * (e.df + h * (0.5 * e.d2f + h * (e.d3f / 6.0 + h * e.d4f / 24.0)));
           // First-order error of the double f: |r|^T E + rounding of r^T s.
           double const err1 =
               p * (dot(ar, E) + 3.0 * kU * dot(ar, as)) + 4.0 * kU * e.f + err_l;

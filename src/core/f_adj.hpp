@@ -1,4 +1,4 @@
-// f and its first three derivatives in double through the adjugate of
+// f and its first four derivatives in double through the adjugate of
 // Q(lambda): Q^{-1} = adj(Q) / det(Q) (docs/methods.md, eq. (M16)). Shorter
 // dependency chains than LDL^T (one division instead of three in sequence),
 // hence faster; not backward stable, so it is used only where the error of
@@ -8,7 +8,6 @@
 
 #include <cmath>
 
-#include "f_derivatives.hpp"
 #include "sym3.hpp"
 
 namespace pw85 {
@@ -16,7 +15,7 @@ namespace pw85 {
 struct AdjEval {
   double lambda;
   double phi, dphi;
-  double f, df, d2f, d3f;
+  double f, df, d2f, d3f, d4f;
   double det;
   Sym3 q, adj;
   Vec3 s;
@@ -27,6 +26,16 @@ inline Sym3 adjugate3(Sym3 const &q) noexcept {
                q[0] * q[5] - q[2] * q[2], q[1] * q[2] - q[0] * q[4], q[0] * q[3] - q[1] * q[1]}};
 }
 
+// f and its first four derivatives at lambda. The dependency chain of (M16)
+// is kept short: the products with C = adj Q are formed unnormalised
+// (C r = det s, D C r = det u, C D C r = det^2 v, ...) and the powers of
+// 1/det, computed off the critical path, are applied to the dot products:
+//   phi = r.Cr / det,  phi' = -(Cr).(DCr) / det^2,  phi'' = 2 (DCr).(CDCr) / det^3,
+//   phi''' = -6 (CDCr).(DCDCr) / det^4,  phi'''' = 24 (DCDCr).(CDCDCr) / det^5
+// (pw85 documentation ch. 4, eqs. (5)-(9), carried two orders further with
+// d/dlambda Q^{-1} = -Q^{-1} D Q^{-1}); f = p phi with p = lambda (1 - lambda)
+// by Leibniz's rule (p' = 1 - 2 lambda, p'' = -2), eq. (M18):
+//   f'''' = p phi'''' + 4 p' phi''' - 12 phi''.
 inline bool f_eval_adj(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                        Sym3 const &d, AdjEval &e) noexcept {
   e.lambda = lambda;
@@ -34,19 +43,32 @@ inline bool f_eval_adj(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const 
   Sym3 const &q = e.q;
   e.adj = adjugate3(q);
   Sym3 const &c = e.adj;
-  e.det = q[0] * c[0] + q[1] * c[1] + q[2] * c[2];
-  if (!(e.det > 0.0)) return false;
-  double const id = 1.0 / e.det;
-  Vec3 const cr = multiply(c, r);
-  Vec3 const s{{cr[0] * id, cr[1] * id, cr[2] * id}};
-  e.s = s;
-  Vec3 const u = multiply(d, s);
-  Vec3 const cu = multiply(c, u);
-  Vec3 const v{{cu[0] * id, cu[1] * id, cu[2] * id}};
-  Vec3 const w = multiply(d, v);
-  set_f_derivatives(lambda, r, s, u, v, w, e);
-  return e.phi > 0.0 && std::isfinite(e.f) && std::isfinite(e.df) && std::isfinite(e.d2f) &&
-         std::isfinite(e.d3f);
+  double const det = q[0] * c[0] + q[1] * c[1] + q[2] * c[2];
+  e.det = det;
+  Vec3 const s0 = multiply(c, r);   // det s
+  Vec3 const u0 = multiply(d, s0);  // det u
+  Vec3 const v0 = multiply(c, u0);  // det^2 v
+  Vec3 const w0 = multiply(d, v0);  // det^2 w
+  Vec3 const x0 = multiply(c, w0);  // det^3 Q^{-1} w
+  double const id = 1.0 / det, id2 = id * id;
+  double const id3 = id2 * id, id4 = id2 * id2;
+  e.s = Vec3{{s0[0] * id, s0[1] * id, s0[2] * id}};
+  double const phi = dot(r, s0) * id;
+  double const phi1 = -dot(s0, u0) * id2;
+  double const phi2 = 2.0 * dot(u0, v0) * id3;
+  double const phi3 = -6.0 * dot(v0, w0) * id4;
+  double const phi4 = 24.0 * dot(w0, x0) * (id4 * id);
+  double const p = lambda * (1.0 - lambda);
+  double const p1 = 1.0 - 2.0 * lambda;
+  e.phi = phi;
+  e.dphi = phi1;
+  e.f = p * phi;
+  e.df = p1 * phi + p * phi1;
+  e.d2f = -2.0 * phi + 2.0 * p1 * phi1 + p * phi2;
+  e.d3f = -6.0 * phi1 + 3.0 * p1 * phi2 + p * phi3;
+  e.d4f = -12.0 * phi2 + 4.0 * p1 * phi3 + p * phi4;
+  return det > 0.0 && phi > 0.0 && std::isfinite(e.f) && std::isfinite(e.df) &&
+         std::isfinite(e.d2f) && std::isfinite(e.d3f) && std::isfinite(e.d4f);
 }
 
 // Componentwise bound (first order in u) on the error of the computed s
