@@ -41,6 +41,8 @@ constexpr int kAdjMaxIter = 30;
 // double phi is below this (its second-order error is then below ~4e-16).
 constexpr double kMaxFirstOrderRel = 1e-8;
 constexpr double kDDGapTol = 0x1p-60;
+constexpr double kDDModelGap = 0x1p-40;
+constexpr double kDDSlopeRel = 0x1p-10;
 constexpr int kDDMaxNewton = 6;
 constexpr int kDDMaxBisect = 80;
 }  // namespace
@@ -106,9 +108,16 @@ Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
             res.mu2_error = err1;
             return kOk;
           }
+          // Second-order error of the stationary form: p E^T |Q| E; tested
+          // before the form is computed (with f for mu2, 1e-3 margin), so
+          // that pairs bound to fail go straight to step 2.
+          double const err2 = p * dot(E, multiply(qa, E)) + err_l;
+          if (err2 + e.f * 8.0 * kU > 0.999 * kFastRel * e.f) {
+            if (!tiny) start = next;
+            break;
+          }
           double const mu2 = f_stationary(lambda, r, q1, q2, e.s) + corr;
-          // Second-order error of the stationary form: p E^T |Q| E.
-          double const err = mu2 * 8.0 * kU + p * dot(E, multiply(qa, E)) + err_l;
+          double const err = mu2 * 8.0 * kU + err2;
           if (err <= kFastRel * mu2) {
             res.mu2 = mu2;
             res.lambda = lambda + h;
@@ -166,6 +175,8 @@ Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   FEvalDD fd;
   double lambda;
   double a = std::isfinite(e.f) ? -e.d2f : 0.0;  // -f'' > 0
+  bool const have_d3f = std::isfinite(e.f) && std::isfinite(e.d3f);
+  double const d3f = have_d3f ? e.d3f : 0.0;
   if (std::isfinite(e.f) && a > 0.0) {
     lambda = e.lambda;
     for (int k = 0; k < kDDMaxNewton; ++k) {
@@ -177,6 +188,22 @@ Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
         res.lambda = lambda;
         res.mu2_error = rel_dd * fd.f + gap;
         return res.mu2_error <= kDefaultRelAccuracy * res.mu2 ? kOk : kInaccurate;
+      }
+      // Small gap: the maximum of the quadratic model, f + gap (h = f'/a),
+      // saves the next double-double evaluation. Its error: the slope a
+      // from the double evaluation (relative error taken as kDDSlopeRel,
+      // far above that of a double f'' where the double iteration
+      // converged), and the cubic term |f''' h^3| / 6, counted twice.
+      if (have_d3f && gap <= kDDModelGap * fd.f) {
+        double const h = fd.df / a;
+        double const model_err =
+            kDDSlopeRel * gap + std::fabs(d3f * h * h * h) / 3.0;
+        if (model_err <= kDDGapTol * fd.f) {
+          res.mu2 = fd.f + gap;
+          res.lambda = lambda + h;
+          res.mu2_error = rel_dd * res.mu2 + model_err;
+          return res.mu2_error <= kDefaultRelAccuracy * res.mu2 ? kOk : kInaccurate;
+        }
       }
       double next = lambda + fd.df / a;
       if (!(next > 0.0 && next < 1.0) || next == lambda) break;

@@ -3,8 +3,8 @@
 // With s = Q^{-1} r, u = D s, v = Q^{-1} u, w = D v (D = Q2 - Q1):
 //   phi' = -s^T u,  phi'' = 2 u^T v,  phi''' = -6 v^T w
 // (pw85 documentation, chapter 4, eqs. (5)-(9), one order further).
-// Shared by the adjugate (f_adj.hpp) and LDL^T (f_ldl.hpp) evaluations,
-// whose result structs both have the fields written here.
+// Used by the L D L^T evaluation (f_ldl.hpp); f_adj.hpp carries the same
+// formulas one order further (docs/methods.md, eq. (M18)).
 #pragma once
 
 #include "sym3.hpp"
