@@ -19,7 +19,10 @@ constexpr double kU = 0x1p-53;  // unit roundoff
 // Error bound of an expression of at most 16 rounded operations on any path
 // (docs/overlap.md, eq. (O3)): |fl(E) - E| <= kC * fl(|E|) + kAbs.
 constexpr double kC = 32 * kU;
-constexpr double kAbs = 0x1p-900;
+// Absolute term covering gradual underflow for inputs in the safe range
+// |Q_ij| <= 2^60, |r_i| <= 2^60 (eq. (O3), (O9)).
+constexpr double kAbs = 0x1p-800;
+constexpr double kRangeHi = 0x1p60, kRangeLo = 0x1p-60;
 
 struct Bounded {
   double v;     // computed value
@@ -117,6 +120,9 @@ inline bool witness_inside(Vec3 const &x, Vec3 const &r, Sym3 const &q1, Sym3 co
                            Bounded const &det2, double const m2[6],
                            double const ma2[6]) noexcept {
   Vec3 const xa{{std::fabs(x[0]), std::fabs(x[1]), std::fabs(x[2])}};
+  // The error bound (O3) with kAbs needs |x_i| (and so |x_i - r_i|) in the
+  // safe range (eq. (O9)); NaN fails the test too.
+  if (!(xa[0] <= kRangeHi && xa[1] <= kRangeHi && xa[2] <= kRangeHi)) return false;
   Bounded const a1 = quad_adj(m1, ma1, x, xa);
   double const g1 = det1.v - a1.v;
   if (!(g1 > kC * (det1.perm + a1.perm) + kAbs)) return false;
@@ -132,8 +138,220 @@ inline bool witness_inside(Vec3 const &x, Vec3 const &r, Sym3 const &q1, Sym3 co
 
 inline double max_abs(double const *x, int n) noexcept {
   double m = 0.0;
-  for (int i = 0; i < n; ++i) m = std::fmax(m, std::fabs(x[i]));
+  for (int i = 0; i < n; ++i) {
+    double const a = std::fabs(x[i]);
+    m = a > m ? a : m;  // inputs are finite: no NaN semantics needed
+  }
   return m;
+}
+
+// r^T Q r with its bound (the support function of {x : x^T Q^{-1} x <= 1}
+// along r is sqrt(r^T Q r)); rr[] = {r0 r0, r1 r1, r2 r2, r0 r1, r0 r2, r1 r2}.
+inline Bounded quad_q(Sym3 const &q, double const rr[6], double const rra[6]) noexcept {
+  Bounded b;
+  b.v = q[0] * rr[0] + q[3] * rr[1] + q[5] * rr[2] +
+        2.0 * (q[1] * rr[3] + q[2] * rr[4] + q[4] * rr[5]);
+  b.perm = std::fabs(q[0]) * rr[0] + std::fabs(q[3]) * rr[1] + std::fabs(q[5]) * rr[2] +
+           2.0 * (std::fabs(q[1]) * rra[3] + std::fabs(q[2]) * rra[4] +
+                  std::fabs(q[4]) * rra[5]);
+  return b;
+}
+
+// Same as quad_adj, from the products rr[] (entries of r r^T).
+inline Bounded quad_m(double const m[6], double const ma[6], double const rr[6],
+                      double const rra[6]) noexcept {
+  Bounded b;
+  b.v = m[0] * rr[0] + m[3] * rr[1] + m[5] * rr[2] +
+        2.0 * (m[1] * rr[3] + m[2] * rr[4] + m[4] * rr[5]);
+  b.perm = ma[0] * rr[0] + ma[3] * rr[1] + ma[5] * rr[2] +
+           2.0 * (ma[1] * rra[3] + ma[2] * rra[4] + ma[4] * rra[5]);
+  return b;
+}
+
+// tr(adj(A) B) = sum_ij adj(A)_ij B_ij (eq. (O10)).
+inline Bounded trace_adj(double const m[6], double const ma[6], Sym3 const &b,
+                         Sym3 const &ba) noexcept {
+  Bounded t;
+  t.v = m[0] * b[0] + m[3] * b[3] + m[5] * b[5] + 2.0 * (m[1] * b[1] + m[2] * b[2] + m[4] * b[4]);
+  t.perm = ma[0] * ba[0] + ma[3] * ba[3] + ma[5] * ba[5] +
+           2.0 * (ma[1] * ba[1] + ma[2] * ba[2] + ma[4] * ba[4]);
+  return t;
+}
+
+// Mixed adjugate M = adj(A + B) - adj(A) - adj(B), bilinear in (A, B),
+// entries in the order of Sym3 (eq. (O10)); ma[] the same on |A|, |B|.
+inline void mixed_adj(Sym3 const &a, Sym3 const &b, Sym3 const &aa, Sym3 const &ba,
+                      double m[6], double ma[6]) noexcept {
+  m[0] = (a[3] * b[5] + b[3] * a[5]) - 2.0 * (a[4] * b[4]);
+  m[1] = (a[2] * b[4] + b[2] * a[4]) - (a[1] * b[5] + b[1] * a[5]);
+  m[2] = (a[1] * b[4] + b[1] * a[4]) - (a[2] * b[3] + b[2] * a[3]);
+  m[3] = (a[0] * b[5] + b[0] * a[5]) - 2.0 * (a[2] * b[2]);
+  m[4] = (a[1] * b[2] + b[1] * a[2]) - (a[0] * b[4] + b[0] * a[4]);
+  m[5] = (a[0] * b[3] + b[0] * a[3]) - 2.0 * (a[1] * b[1]);
+  ma[0] = (aa[3] * ba[5] + ba[3] * aa[5]) + 2.0 * (aa[4] * ba[4]);
+  ma[1] = (aa[2] * ba[4] + ba[2] * aa[4]) + (aa[1] * ba[5] + ba[1] * aa[5]);
+  ma[2] = (aa[1] * ba[4] + ba[1] * aa[4]) + (aa[2] * ba[3] + ba[2] * aa[3]);
+  ma[3] = (aa[0] * ba[5] + ba[0] * aa[5]) + 2.0 * (aa[2] * ba[2]);
+  ma[4] = (aa[1] * ba[2] + ba[1] * aa[2]) + (aa[0] * ba[4] + ba[0] * aa[4]);
+  ma[5] = (aa[0] * ba[3] + ba[0] * aa[3]) + 2.0 * (aa[1] * ba[1]);
+}
+
+// Decided verdict (0 or 1) or kUndecided.
+constexpr int kUndecided = -1;
+
+// The floating-point filters on inputs in the safe range (eq. (O9)):
+// |Q_ij| <= 2^60, |r_i| <= 2^60, r != 0. Returns 0, 1 or kUndecided.
+int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
+  double const rr[6] = {r[0] * r[0], r[1] * r[1], r[2] * r[2],
+                        r[0] * r[1], r[0] * r[2], r[1] * r[2]};
+  double const rra[6] = {rr[0], rr[1], rr[2], std::fabs(rr[3]), std::fabs(rr[4]),
+                         std::fabs(rr[5])};
+  // --- Separating plane orthogonal to r (eq. (O11)). ---
+  // h_i^2 = r^T Q_i r: E1 lies in {x : r.x <= h1}, E2 in {x : r.x >= r.r - h2}.
+  Bounded const a1 = quad_q(q1, rr, rra), a2 = quad_q(q2, rr, rra);
+  double const h1 = std::sqrt(a1.v + a1.err()), h2 = std::sqrt(a2.v + a2.err());
+  double const rdr = rr[0] + rr[1] + rr[2];
+  if (rdr >= (h1 + h2) * (1.0 + 32 * kU)) {
+    st = kStageSpheres;
+    return 0;
+  }
+  // --- Determinants and adjugates (eq. (O3)). ---
+  Sym3 const qa1 = abs3(q1), qa2 = abs3(q2);
+  double m1[6], ma1[6], m2[6], ma2[6];
+  Bounded const det1 = det_adj(q1, qa1, m1, ma1);
+  Bounded const det2 = det_adj(q2, qa2, m2, ma2);
+  // c0 = r^T adj Q1 r, c2 = r^T adj Q2 r (eq. (O10)).
+  Bounded const c0 = quad_m(m1, ma1, rr, rra), c2 = quad_m(m2, ma2, rr, rra);
+  // --- Segment witness (eq. (O12)): t r with t = s1 / (s1 + s2), where
+  // s_i = 1 / rho_i = sqrt(det Q_i / c_i) is where the ray leaves E_i. ---
+  double const s1 = std::sqrt(det1.v / c0.v), s2 = std::sqrt(det2.v / c2.v);
+  double const ssum = s1 + s2;
+  if (ssum > 1.0) {
+    double const t = s1 / ssum;
+    Vec3 const x{{t * r[0], t * r[1], t * r[2]}};
+    if (witness_inside(x, r, q1, q2, det1, m1, ma1, det2, m2, ma2)) {
+      st = kStageSpheres;
+      return 1;
+    }
+  }
+  // --- Coefficients of p in the basis s^(4-j) t^j, s = 1 - l, t = l
+  // (eq. (O10)): P0 = b0, P1 = b0 + b1 - c0, P2 = b1 + b2 - c1,
+  // P3 = b2 + b3 - c2, P4 = b3. ---
+  Bounded const b1 = trace_adj(m1, ma1, q2, qa2), b2 = trace_adj(m2, ma2, q1, qa1);
+  double mm[6], mma[6];
+  mixed_adj(q1, q2, qa1, qa2, mm, mma);
+  Bounded const c1 = quad_m(mm, mma, rr, rra);
+  Bounded const p1{(det1.v + b1.v) - c0.v, (det1.perm + b1.perm) + c0.perm};
+  Bounded const p2{(b1.v + b2.v) - c1.v, (b1.perm + b2.perm) + c1.perm};
+  Bounded const p3{(b2.v + det2.v) - c2.v, (b2.perm + det2.perm) + c2.perm};
+  if (p1.v > p1.err() && p2.v > p2.err() && p3.v > p3.err()) {
+    st = kStageFilter;  // (O13): all coefficients positive, p > 0 on [0, 1]
+    return 1;
+  }
+  // --- Minimum of the quartic p (not certified: only chooses l), then
+  // p(l) <= -err certifies separation (O4), or a witness at l overlap (O6).
+  double const P0 = det1.v, P1 = p1.v, P2 = p2.v, P3 = p3.v, P4 = det2.v;
+  // Power basis p(l) = a0 + a1 l + ... + a4 l^4.
+  double const k1 = -4.0 * P0 + P1, k2 = 6.0 * P0 - 3.0 * P1 + P2;
+  double const k3 = -4.0 * P0 + 3.0 * P1 - 2.0 * P2 + P3;
+  double const k4 = P0 - P1 + P2 - P3 + P4;
+  double l = to_grid(h1 / (h1 + h2));
+  if (!(l > 0.0 && l < 1.0)) l = 0.5;
+  double lo = 0.0, hi = 1.0;
+  for (int it = 0; it < 8; ++it) {
+    double const dp = k1 + l * (2.0 * k2 + l * (3.0 * k3 + l * (4.0 * k4)));
+    double const d2p = 2.0 * k2 + l * (6.0 * k3 + l * (12.0 * k4));
+    if (dp > 0.0)
+      hi = l;
+    else
+      lo = l;
+    double next = l - dp / d2p;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    next = to_grid(next);
+    if (next == l) break;
+    bool const done = std::fabs(next - l) <= 0x1p-40;
+    l = next;
+    if (done) break;
+  }
+  if (!(l > 0.0 && l < 1.0)) return kUndecided;
+  Bounded const p = p_at(l, r, q1, q2);
+  if (p.v <= -p.err()) {
+    st = kStageFilter;
+    return 0;
+  }
+  if (p.v > p.err()) {
+    // x = (1 - l) Q1 adj(Q(l)) r / det Q(l): the point of E1 where the
+    // ellipsoids would touch if f(l) were mu^2 (pw85 documentation, ch. 3).
+    double const nu = 1.0 - l;
+    Sym3 q;
+    for (int i = 0; i < kSym; ++i) q[i] = nu * q1[i] + l * q2[i];
+    double m[6];
+    m[0] = q[3] * q[5] - q[4] * q[4];
+    m[1] = q[2] * q[4] - q[1] * q[5];
+    m[2] = q[1] * q[4] - q[2] * q[3];
+    m[3] = q[0] * q[5] - q[2] * q[2];
+    m[4] = q[1] * q[2] - q[0] * q[4];
+    m[5] = q[0] * q[3] - q[1] * q[1];
+    double const dq = q[0] * m[0] + q[1] * m[1] + q[2] * m[2];
+    Sym3 const adj{{m[0], m[1], m[2], m[3], m[4], m[5]}};
+    Vec3 const s = multiply(adj, r);
+    Vec3 x = multiply(q1, s);
+    double const w = nu / dq;
+    for (int i = 0; i < kDim; ++i) x[i] *= w;
+    if (witness_inside(x, r, q1, q2, det1, m1, ma1, det2, m2, ma2)) {
+      st = kStageFilter;
+      return 1;
+    }
+  }
+
+  // --- Newton for lambda* with Cholesky, then one certificate. ---
+  Sym3 const d = difference(q2, q1);
+  l = to_grid(h1 / (h1 + h2));
+  if (!(l > 0.0 && l < 1.0)) l = 0.5;
+  lo = 0.0;
+  hi = 1.0;
+  Newton nv;
+  for (int it = 0; it < 40; ++it) {
+    if (!newton_values(l, r, q1, q2, d, nv)) break;
+    // Early separation: f(l) >= 1 at a grid point, certified by p(l) <= 0.
+    if (nv.f >= 1.0) {
+      Bounded const pl = p_at(l, r, q1, q2);
+      if (pl.v <= -pl.err()) {
+        st = kStageFilter;
+        return 0;
+      }
+    }
+    if (nv.df > 0.0)
+      lo = l;
+    else
+      hi = l;
+    double next = l - nv.df / nv.d2f;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    next = to_grid(next);
+    double const step = std::fabs(next - l);
+    // Early overlap: well below 1, witness at the current point (eq. (O6)).
+    double const est = nv.f + 0.5 * nv.df * (nv.df / -nv.d2f);
+    if (est < 0.95 || step <= 0x1p-52) {
+      double const nu = 1.0 - l;
+      Vec3 x = multiply(q1, nv.s);
+      for (int i = 0; i < kDim; ++i) x[i] *= nu;
+      if (est < 1.0 && witness_inside(x, r, q1, q2, det1, m1, ma1, det2, m2, ma2)) {
+        st = kStageFilter;
+        return 1;
+      }
+      if (step <= 0x1p-52) break;
+    }
+    if (next == l || hi - lo <= 0x1p-52) break;
+    l = next;
+  }
+  return kUndecided;
+}
+
+inline bool in_range(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
+  double const qm1 = max_abs(q1.a, kSym), qm2 = max_abs(q2.a, kSym);
+  double const qm = qm1 > qm2 ? qm1 : qm2;
+  double const rm = max_abs(r.x, kDim);
+  return qm >= kRangeLo && qm <= kRangeHi && rm <= kRangeHi;
 }
 
 }  // namespace
@@ -147,110 +365,44 @@ Status overlap(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in, int &verd
     verdict = 1;
     return kOk;
   }
-  // Exact scaling (eq. (O1)): Q -> 2^-2k Q, r -> 2^-k r leaves mu^2 unchanged;
-  // chosen so that max |Q_ij| < 1. Every scaled value must stay normal (or
-  // zero) for the scaling to be exact; otherwise go to the exact stage.
-  int e;
-  std::frexp(std::fmax(max_abs(q1_in.a, kSym), max_abs(q2_in.a, kSym)), &e);
-  int const k = e >= 0 ? (e + 1) / 2 : -((-e) / 2);  // 2k >= e: max |Q| 2^-2k < 1
-  double const sq = std::ldexp(1.0, -2 * k), sr = std::ldexp(1.0, -k);
-  Sym3 q1, q2;
-  Vec3 r;
-  bool exact_scale = sq != 0.0 && sr != 0.0 && std::isfinite(sq) && std::isfinite(sr);
-  for (int i = 0; i < kSym; ++i) {
-    q1[i] = q1_in[i] * sq;
-    q2[i] = q2_in[i] * sq;
-    exact_scale = exact_scale && (q1[i] == 0.0 || std::fabs(q1[i]) >= 0x1p-1022) &&
-                  (q2[i] == 0.0 || std::fabs(q2[i]) >= 0x1p-1022);
-  }
-  for (int i = 0; i < kDim; ++i) {
-    r[i] = r_in[i] * sr;
-    exact_scale = exact_scale && (r[i] == 0.0 || std::fabs(r[i]) >= 0x1p-1022) &&
-                  std::isfinite(r[i]);
-  }
-  if (exact_scale) {
-    // --- Stage 1: spheres (eqs. (O7), (O8)). ---
-    double const rr = dot(r, r);
-    auto gersh = [](Sym3 const &q) {
-      double const a0 = std::fabs(q[0]) + std::fabs(q[1]) + std::fabs(q[2]);
-      double const a1 = std::fabs(q[1]) + std::fabs(q[3]) + std::fabs(q[4]);
-      double const a2 = std::fabs(q[2]) + std::fabs(q[4]) + std::fabs(q[5]);
-      return std::fmax(a0, std::fmax(a1, a2));
-    };
-    double const big = std::sqrt(gersh(q1)) + std::sqrt(gersh(q2));
-    if (rr >= (big * big) * (1.0 + 32 * kU)) {
-      st = kStageSpheres;
-      verdict = 0;
+  if (in_range(r_in, q1_in, q2_in)) {
+    int const v = filters(r_in, q1_in, q2_in, st);
+    if (v != kUndecided) {
+      verdict = v;
       return kOk;
     }
-    Sym3 const qa1 = abs3(q1), qa2 = abs3(q2);
-    double m1[6], ma1[6], m2[6], ma2[6];
-    Bounded const det1 = det_adj(q1, qa1, m1, ma1);
-    Bounded const det2 = det_adj(q2, qa2, m2, ma2);
-    double const lo1 = det1.v - det1.err(), lo2 = det2.v - det2.err();
-    if (lo1 > 0.0 && lo2 > 0.0) {
-      // lambda_min >= det / (sum of principal 2x2 minors) >= det / (q0 q3 + q0 q5 + q3 q5).
-      double const s1 = (q1[0] * q1[3] + q1[0] * q1[5] + q1[3] * q1[5]) * (1.0 + 8 * kU);
-      double const s2 = (q2[0] * q2[3] + q2[0] * q2[5] + q2[3] * q2[5]) * (1.0 + 8 * kU);
-      double const small = std::sqrt(lo1 / s1) + std::sqrt(lo2 / s2);
-      if (rr * (1.0 + 32 * kU) < (small * small) * (1.0 - 32 * kU)) {
-        st = kStageSpheres;
-        verdict = 1;
+  } else {
+    // Exact scaling (eq. (O1)), only outside the safe range: Q -> 2^-2k Q,
+    // r -> 2^-k r leaves mu^2 unchanged; chosen so that max |Q_ij| < 1.
+    // Every scaled value must stay normal (or zero) for the scaling to be
+    // exact; otherwise go to the exact stage.
+    int e;
+    std::frexp(std::fmax(max_abs(q1_in.a, kSym), max_abs(q2_in.a, kSym)), &e);
+    int const k = e >= 0 ? (e + 1) / 2 : -((-e) / 2);  // 2k >= e: max |Q| 2^-2k < 1
+    double const sq = std::ldexp(1.0, -2 * k), sr = std::ldexp(1.0, -k);
+    Sym3 q1, q2;
+    Vec3 r;
+    bool exact_scale = sq != 0.0 && sr != 0.0 && std::isfinite(sq) && std::isfinite(sr);
+    for (int i = 0; i < kSym; ++i) {
+      q1[i] = q1_in[i] * sq;
+      q2[i] = q2_in[i] * sq;
+      exact_scale = exact_scale && (q1[i] == 0.0 || std::fabs(q1[i]) >= 0x1p-1022) &&
+                    (q2[i] == 0.0 || std::fabs(q2[i]) >= 0x1p-1022);
+    }
+    for (int i = 0; i < kDim; ++i) {
+      r[i] = r_in[i] * sr;
+      exact_scale = exact_scale && (r[i] == 0.0 || std::fabs(r[i]) >= 0x1p-1022) &&
+                    std::isfinite(r[i]);
+    }
+    if (exact_scale && in_range(r, q1, q2)) {
+      int const v = filters(r, q1, q2, st);
+      if (v != kUndecided) {
+        verdict = v;
         return kOk;
       }
     }
-
-    // --- Stage 2: Newton for lambda*, then one certificate. ---
-    Sym3 const d = difference(q2, q1);
-    double const h1 = std::sqrt(dot(r, multiply(q1, r)));
-    double const h2 = std::sqrt(dot(r, multiply(q2, r)));
-    double l = to_grid(h1 / (h1 + h2));
-    if (!(l > 0.0 && l < 1.0)) l = 0.5;
-    double lo = 0.0, hi = 1.0;
-    Newton nv;
-    bool ok = true;
-    for (int it = 0; it < 40; ++it) {
-      if (!newton_values(l, r, q1, q2, d, nv)) {
-        ok = false;
-        break;
-      }
-      // Early separation: f(l) >= 1 at a grid point, certified by p(l) <= 0.
-      if (nv.f >= 1.0) {
-        Bounded const p = p_at(l, r, q1, q2);
-        if (p.v <= -p.err()) {
-          st = kStageFilter;
-          verdict = 0;
-          return kOk;
-        }
-      }
-      if (nv.df > 0.0)
-        lo = l;
-      else
-        hi = l;
-      double next = l - nv.df / nv.d2f;
-      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-      next = to_grid(next);
-      double const step = std::fabs(next - l);
-      // Early overlap: well below 1, witness at the current point (eq. (O6)).
-      double const est = nv.f + 0.5 * nv.df * (nv.df / -nv.d2f);
-      if (est < 0.95 || step <= 0x1p-52) {
-        double const nu = 1.0 - l;
-        Vec3 x = multiply(q1, nv.s);
-        for (int i = 0; i < kDim; ++i) x[i] *= nu;
-        if (est < 1.0 &&
-            witness_inside(x, r, q1, q2, det1, m1, ma1, det2, m2, ma2)) {
-          st = kStageFilter;
-          verdict = 1;
-          return kOk;
-        }
-        if (step <= 0x1p-52) break;
-      }
-      if (next == l || hi - lo <= 0x1p-52) break;
-      l = next;
-    }
-    (void)ok;
   }
-  // --- Stage 3: exact. ---
+  // --- Exact stage. ---
   st = kStageExact;
   return overlap_exact(r_in, q1_in, q2_in, verdict);
 }
