@@ -24,6 +24,17 @@ __attribute__((target("fma"))) double f_stationary_fma(double lambda, Vec3 const
                                                       Vec3 const &s) noexcept {
   return f_stationary_impl<true>(lambda, r, q1, q2, s);
 }
+__attribute__((target("fma"))) Vec3 residual_dd_fma(double lambda, Vec3 const &r,
+                                                   Sym3 const &q1, Sym3 const &q2,
+                                                   Vec3 const &s) noexcept {
+  return residual_dd_impl<true>(lambda, r, q1, q2, s);
+}
+__attribute__((target("fma"))) bool contact_point_dd_fma(double lambda, Vec3 const &r,
+                                                        Sym3 const &q1, Sym3 const &q2,
+                                                        Vec3 &x0, Vec3 &n,
+                                                        double &df) noexcept {
+  return contact_point_dd_impl<true>(lambda, r, q1, q2, x0, n, df);
+}
 inline bool cpu_has_fma() noexcept { return __builtin_cpu_supports("fma"); }
 #endif
 }  // namespace
@@ -49,6 +60,30 @@ double f_stationary(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2
   if (cpu_has_fma()) return f_stationary_fma(lambda, r, q1, q2, s);
 #endif
   return f_stationary_impl<false>(lambda, r, q1, q2, s);
+#endif
+}
+
+Vec3 residual_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                 Vec3 const &s) noexcept {
+#if defined(PW85_DD_STATIC_FMA)
+  return residual_dd_impl<true>(lambda, r, q1, q2, s);
+#else
+#if defined(PW85_DD_DISPATCH)
+  if (cpu_has_fma()) return residual_dd_fma(lambda, r, q1, q2, s);
+#endif
+  return residual_dd_impl<false>(lambda, r, q1, q2, s);
+#endif
+}
+
+bool contact_point_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                      Vec3 &x0, Vec3 &n, double &df) noexcept {
+#if defined(PW85_DD_STATIC_FMA)
+  return contact_point_dd_impl<true>(lambda, r, q1, q2, x0, n, df);
+#else
+#if defined(PW85_DD_DISPATCH)
+  if (cpu_has_fma()) return contact_point_dd_fma(lambda, r, q1, q2, x0, n, df);
+#endif
+  return contact_point_dd_impl<false>(lambda, r, q1, q2, x0, n, df);
 #endif
 }
 

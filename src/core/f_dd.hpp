@@ -23,18 +23,21 @@ struct FEvalDD {
   double phi;  // r^T Q^{-1} r, rounded to double
 };
 
+// Q(lambda) = (1 - lambda) Q1 + lambda Q2 formed exactly as double-doubles,
+// factored as L D L^T and s = Q^{-1} r, phi = r^T s solved in double-double
+// (shared by f_eval_dd_impl and contact_point_dd_impl). Returns false when a
+// pivot is not positive.
 template <bool F>
-PW85_ALWAYS_INLINE bool f_eval_dd_impl(double lambda, Vec3 const &r, Sym3 const &q1,
-                                       Sym3 const &q2, FEvalDD &out) noexcept {
+PW85_ALWAYS_INLINE bool solve_dd_impl(double lambda, Vec3 const &r, Sym3 const &q1,
+                                      Sym3 const &q2, dd::DD s[kDim], dd::DD &phi) noexcept {
   using namespace dd;
   DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
-  DD q[kSym], dq[kSym];
+  DD q[kSym];
   for (int i = 0; i < kSym; ++i) {
     // (1 - lambda) q1 exactly as a double-double: om.hi q1 + om.lo q1.
     DD a = two_prod<F>(om.hi, q1[i]);
     a = add(a, om.lo * q1[i]);
     q[i] = add(a, two_prod<F>(lambda, q2[i]));
-    dq[i] = two_sum(q2[i], -q1[i]);  // D = Q2 - Q1, exactly
   }
   // L D L^T.
   if (!(q[0].hi > 0.0)) return false;
@@ -53,10 +56,23 @@ PW85_ALWAYS_INLINE bool f_eval_dd_impl(double lambda, Vec3 const &r, Sym3 const 
   DD const y1 = sub(DD{r[1], 0.0}, mul<F>(l10, r[0]));
   DD const y2 = sub(sub(DD{r[2], 0.0}, mul<F>(l20, r[0])), mul<F>(l21, y1));
   DD const z0 = mul<F>(y0, id0), z1 = mul<F>(y1, id1), z2 = mul<F>(y2, id2);
-  DD const phi = add(add(mul<F>(y0, z0), mul<F>(y1, z1)), mul<F>(y2, z2));
-  DD const s2 = z2;
-  DD const s1 = sub(z1, mul<F>(l21, s2));
-  DD const s0 = sub(sub(z0, mul<F>(l10, s1)), mul<F>(l20, s2));
+  phi = add(add(mul<F>(y0, z0), mul<F>(y1, z1)), mul<F>(y2, z2));
+  s[2] = z2;
+  s[1] = sub(z1, mul<F>(l21, s[2]));
+  s[0] = sub(sub(z0, mul<F>(l10, s[1])), mul<F>(l20, s[2]));
+  return true;
+}
+
+template <bool F>
+PW85_ALWAYS_INLINE bool f_eval_dd_impl(double lambda, Vec3 const &r, Sym3 const &q1,
+                                       Sym3 const &q2, FEvalDD &out) noexcept {
+  using namespace dd;
+  DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
+  DD dq[kSym];
+  for (int i = 0; i < kSym; ++i) dq[i] = two_sum(q2[i], -q1[i]);  // D = Q2 - Q1, exactly
+  DD sv[kDim], phi;
+  if (!solve_dd_impl<F>(lambda, r, q1, q2, sv, phi)) return false;
+  DD const s0 = sv[0], s1 = sv[1], s2 = sv[2];
   // s^T D s.
   DD sds = add(add(mul<F>(dq[0], mul<F>(s0, s0)), mul<F>(dq[3], mul<F>(s1, s1))), mul<F>(dq[5], mul<F>(s2, s2)));
   DD const cross = add(add(mul<F>(dq[1], mul<F>(s0, s1)), mul<F>(dq[2], mul<F>(s0, s2))),
@@ -116,10 +132,75 @@ PW85_ALWAYS_INLINE double f_stationary_impl(double lambda, Vec3 const &r, Sym3 c
   return to_double(mul<F>(mul<F>(bracket, om), lambda));
 }
 
+// Residual rho = r - Q(lambda) s of a double-precision s, with Q(lambda)
+// formed exactly and the products and sums in double-double, rounded to
+// double at the end: accurate to a few ulps of rho even when |rho| << |Q||s|
+// (iterative refinement, docs/contact_geometry.md, eq. (G8)).
+template <bool F>
+PW85_ALWAYS_INLINE Vec3 residual_dd_impl(double lambda, Vec3 const &r, Sym3 const &q1,
+                                         Sym3 const &q2, Vec3 const &s) noexcept {
+  using namespace dd;
+  DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
+  DD q[kSym];
+  for (int i = 0; i < kSym; ++i) {
+    DD a = two_prod<F>(om.hi, q1[i]);
+    a = add(a, om.lo * q1[i]);
+    q[i] = add(a, two_prod<F>(lambda, q2[i]));
+  }
+  static constexpr int kIdx[kDim][kDim] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+  Vec3 rho;
+  for (int i = 0; i < kDim; ++i) {
+    DD acc{r[i], 0.0};
+    for (int j = 0; j < kDim; ++j) acc = sub(acc, mul<F>(q[kIdx[i][j]], s[j]));
+    rho[i] = to_double(acc);
+  }
+  return rho;
+}
+
+// Contact point, normal and f' at lambda in double-double
+// (docs/contact_geometry.md, eqs. (G1), (G2), (G9)): s = Q(lambda)^{-1} r by
+// solve_dd_impl, x0 = (1 - lambda) Q1 s, n = s / |s| and
+// f'(lambda) = (1 - lambda)^2 s^T Q1 s - lambda^2 s^T Q2 s, each rounded to
+// double at the end. Returns false when Q(lambda) is not positive definite
+// in double-double or a value is not finite.
+template <bool F>
+PW85_ALWAYS_INLINE bool contact_point_dd_impl(double lambda, Vec3 const &r, Sym3 const &q1,
+                                              Sym3 const &q2, Vec3 &x0, Vec3 &n,
+                                              double &df) noexcept {
+  using namespace dd;
+  DD s[kDim], phi;
+  if (!solve_dd_impl<F>(lambda, r, q1, q2, s, phi)) return false;
+  DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
+  static constexpr int kIdx[kDim][kDim] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+  DD sq1{0.0, 0.0}, sq2{0.0, 0.0};
+  double ss = 0.0;
+  for (int i = 0; i < kDim; ++i) {
+    DD t1{0.0, 0.0}, t2{0.0, 0.0};  // (Q1 s)_i, (Q2 s)_i
+    for (int j = 0; j < kDim; ++j) {
+      t1 = add(t1, mul<F>(s[j], q1[kIdx[i][j]]));
+      t2 = add(t2, mul<F>(s[j], q2[kIdx[i][j]]));
+    }
+    x0[i] = to_double(mul<F>(t1, om));
+    sq1 = add(sq1, mul<F>(s[i], t1));
+    sq2 = add(sq2, mul<F>(s[i], t2));
+    n[i] = to_double(s[i]);
+    ss += n[i] * n[i];
+  }
+  double const ns = std::sqrt(ss);
+  for (int i = 0; i < kDim; ++i) n[i] /= ns;
+  df = to_double(sub(mul<F>(mul<F>(sq1, om), om), mul<F>(mul<F>(sq2, lambda), lambda)));
+  return std::isfinite(df) && std::isfinite(x0[0]) && std::isfinite(x0[1]) &&
+         std::isfinite(x0[2]) && ns > 0.0 && std::isfinite(ns);
+}
+
 // Dispatching wrappers (dd_kernels.cpp): the FMA variant when the CPU has it.
 bool f_eval_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                FEvalDD &out) noexcept;
 double f_stationary(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                     Vec3 const &s) noexcept;
+Vec3 residual_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                 Vec3 const &s) noexcept;
+bool contact_point_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                      Vec3 &x0, Vec3 &n, double &df) noexcept;
 
 }  // namespace pw85
