@@ -115,6 +115,95 @@ static void test_tangent_aligned(void) {
   }
 }
 
+/* Sweep across exact tangency of axis-aligned ellipsoids whose centres lie
+ * on a common axis: the tips touch at |r12| = a + b, so the verdict is 1 iff
+ * |r12| < a + b. At this configuration the separating plane normal to r12
+ * (eq. (O11)) and the segment between the centres (eq. (O12)) are both
+ * exactly tight, so a wrong sign, a missing margin or a strict/non-strict
+ * mix-up in either certificate gives a wrong verdict here. The same pairs
+ * are repeated with Q scaled by 4^k and r12 by 2^k (mu^2 unchanged, exact):
+ * k = 0, +-25 stay in the range where no scaling is done, k = +-40, +-200
+ * go through the exact power-of-two scaling (eq. (O1)). */
+static void test_tangent_sweep(void) {
+  static const double semi[][6] = {
+      {2.0, 1.0, 0.5, 1.0, 3.0, 2.0},
+      {0x1p-10, 1024.0, 1.0, 1024.0, 0x1p-10, 0.5},
+      {0.75, 0.25, 4.0, 0.125, 8.0, 0.5},
+      {1.0, 1.0, 1.0, 1.0, 1.0, 1.0},
+  };
+  static const int scale_k[] = {0, 25, -25, 40, -40, 200, -200};
+  static const double rel[] = {0x1p-52, 0x1p-51, 0x1p-50, 0x1p-48, 0x1p-45, 0x1p-40,
+                               0x1p-30, 1e-6,    1e-3,    0.1};
+  int checked = 0;
+  for (size_t c = 0; c < G_N_ELEMENTS(semi); c++)
+    for (size_t sk = 0; sk < G_N_ELEMENTS(scale_k); sk++) {
+      int const k = scale_k[sk];
+      double q1[6] = {ldexp(semi[c][0] * semi[c][0], 2 * k), 0, 0,
+                      ldexp(semi[c][1] * semi[c][1], 2 * k), 0,
+                      ldexp(semi[c][2] * semi[c][2], 2 * k)};
+      double q2[6] = {ldexp(semi[c][3] * semi[c][3], 2 * k), 0, 0,
+                      ldexp(semi[c][4] * semi[c][4], 2 * k), 0,
+                      ldexp(semi[c][5] * semi[c][5], 2 * k)};
+      for (int axis = 0; axis < 3; axis++) {
+        double const d = ldexp(semi[c][axis] + semi[c][3 + axis], k); /* exact */
+        for (size_t i = 0; i < G_N_ELEMENTS(rel); i++)
+          for (int side = -1; side <= 1; side += 2) {
+            double r[3] = {0, 0, 0};
+            r[axis] = d * (1.0 + side * rel[i]);
+            int const expect = r[axis] < d ? 1 : 0;
+            g_assert_cmpint(pw85_overlap(r, q1, q2), ==, expect);
+            /* Swapped ellipsoids, opposite direction. */
+            double mr[3] = {-r[0], -r[1], -r[2]};
+            g_assert_cmpint(pw85_overlap(mr, q2, q1), ==, expect);
+            checked++;
+          }
+        double r[3] = {0, 0, 0};
+        r[axis] = d;
+        g_assert_cmpint(pw85_overlap(r, q1, q2), ==, 0);
+      }
+    }
+  g_assert_cmpint(checked, ==, 4 * 7 * 3 * 10 * 2);
+}
+
+/* Elongated ellipsoids (semi-axes in [0.01, 100]) with centre distance
+ * between 0.05 and 1.2 times the sum of the largest semi-axes: many pairs
+ * near contact with the contact point off the line of centres, so neither
+ * the plane normal to r12 nor the segment decides them and the quartic
+ * coefficient test and the minimisation of p (eqs. (O13), (O14)) do.
+ * Verdicts against the long-double reference, away from tangency
+ * (|mu2 - 1| > 1e-7, the reference's accuracy margin). */
+static void test_off_axis(void) {
+  GRand *rng = g_rand_new_with_seed(2026);
+  int checked = 0;
+  for (int k = 0; k < 2000; k++) {
+    double rad[3], ax[9], q1[6], q2[6], r[3];
+    random_radii(rng, 0.01, 100, rad);
+    random_axes(rng, ax);
+    make_q(rad, ax, q1);
+    random_radii(rng, 0.01, 100, rad);
+    random_axes(rng, ax);
+    make_q(rad, ax, q2);
+    /* Centre distance near the sum of the largest semi-axes: many pairs
+     * near contact, with elongated shapes (contact off the line of centres). */
+    double amax1 = sqrt(fmax(q1[0], fmax(q1[3], q1[5])));
+    double amax2 = sqrt(fmax(q2[0], fmax(q2[3], q2[5])));
+    double const scale = (amax1 + amax2) * exp(g_rand_double_range(rng, log(0.05), log(1.2)));
+    double nrm = 0.0;
+    for (int i = 0; i < 3; i++) {
+      r[i] = g_rand_double_range(rng, -1, 1);
+      nrm += r[i] * r[i];
+    }
+    for (int i = 0; i < 3; i++) r[i] *= scale / sqrt(nrm);
+    long double lam;
+    long double const mu2 = mu2_ld(r, q1, q2, &lam);
+    if (fabsl(mu2 - 1.0L) < 1e-7L * (1 + mu2)) continue;
+    g_assert_cmpint(pw85_overlap(r, q1, q2), ==, mu2 < 1.0L ? 1 : 0);
+    checked++;
+  }
+  g_assert_cmpint(checked, >, 1900);
+  g_rand_free(rng);
+}
+
 /* Far apart / deep overlap / coincident centres, against a long-double
  * golden-section reference away from tangency. */
 static void test_random_clear(void) {
@@ -169,6 +258,8 @@ int main(int argc, char **argv) {
                   test_tangent_spheres_irrational_lambda);
   g_test_add_func("/overlap/tangent/aligned-axes", test_tangent_aligned);
   g_test_add_func("/overlap/random/clear-cases", test_random_clear);
+  g_test_add_func("/overlap/tangent/sweep-scaled", test_tangent_sweep);
+  g_test_add_func("/overlap/random/off-axis-near-contact", test_off_axis);
   g_test_add_func("/overlap/bad-input", test_bad_input);
   return g_test_run();
 }

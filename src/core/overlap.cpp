@@ -222,16 +222,19 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
   Bounded const det2 = det_adj(q2, qa2, m2, ma2);
   // c0 = r^T adj Q1 r, c2 = r^T adj Q2 r (eq. (O10)).
   Bounded const c0 = quad_m(m1, ma1, rr, rra), c2 = quad_m(m2, ma2, rr, rra);
-  // --- Segment witness (eq. (O12)): t r with t = s1 / (s1 + s2), where
-  // s_i = 1 / rho_i = sqrt(det Q_i / c_i) is where the ray leaves E_i. ---
-  double const s1 = std::sqrt(det1.v / c0.v), s2 = std::sqrt(det2.v / c2.v);
-  double const ssum = s1 + s2;
-  if (ssum > 1.0) {
-    double const t = s1 / ssum;
-    Vec3 const x{{t * r[0], t * r[1], t * r[2]}};
-    if (witness_inside(x, r, q1, q2, det1, m1, ma1, det2, m2, ma2)) {
-      st = kStageSpheres;
-      return 1;
+  // --- Segment (eq. (O12)): the ray t r leaves E1 at t = s1 = sqrt(det Q1 / c0)
+  // and E2 covers t in (1 - s2, 1], s2 = sqrt(det Q2 / c2); s1 + s2 > 1 means
+  // a point of the segment lies in both interiors. Certified with lower
+  // bounds of the determinants and upper bounds of c0, c2. ---
+  {
+    double const lo1 = det1.v - det1.err(), lo2 = det2.v - det2.err();
+    double const hi1 = c0.v + c0.err(), hi2 = c2.v + c2.err();
+    if (lo1 > 0.0 && lo2 > 0.0) {
+      double const ssum = std::sqrt(lo1 / hi1) + std::sqrt(lo2 / hi2);
+      if (ssum * (1.0 - 16 * kU) > 1.0) {
+        st = kStageSpheres;
+        return 1;
+      }
     }
   }
   // --- Coefficients of p in the basis s^(4-j) t^j, s = 1 - l, t = l
@@ -258,7 +261,7 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
   double l = to_grid(h1 / (h1 + h2));
   if (!(l > 0.0 && l < 1.0)) l = 0.5;
   double lo = 0.0, hi = 1.0;
-  for (int it = 0; it < 8; ++it) {
+  for (int it = 0; it < 6; ++it) {
     double const dp = k1 + l * (2.0 * k2 + l * (3.0 * k3 + l * (4.0 * k4)));
     double const d2p = 2.0 * k2 + l * (6.0 * k3 + l * (12.0 * k4));
     if (dp > 0.0)
@@ -269,12 +272,27 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     next = to_grid(next);
     if (next == l) break;
-    bool const done = std::fabs(next - l) <= 0x1p-40;
+    bool const done = std::fabs(next - l) <= 0x1p-27;  // p(l) within ~u of min
     l = next;
     if (done) break;
   }
   if (!(l > 0.0 && l < 1.0)) return kUndecided;
-  Bounded const p = p_at(l, r, q1, q2);
+  // p(l) from the coefficients (eq. (O14)): w_j = s^(4-j) t^j with s = 1 - l
+  // exact (l on the grid), value sum P_j w_j, error bound from the
+  // rounding of the sum and the bounds E_j of the coefficients.
+  Bounded p;
+  {
+    double const sv = 1.0 - l, t = l;
+    double const s2 = sv * sv, t2 = t * t;
+    double const w0 = s2 * s2, w1 = (s2 * sv) * t, w2 = s2 * t2, w3 = sv * (t2 * t), w4 = t2 * t2;
+    p.v = (P0 * w0 + P1 * w1) + (P2 * w2 + (P3 * w3 + P4 * w4));
+    double const s1a = (std::fabs(P0) * w0 + std::fabs(P1) * w1) +
+                       (std::fabs(P2) * w2 + (std::fabs(P3) * w3 + std::fabs(P4) * w4));
+    double const s2a = (det1.err() * w0 + p1.err() * w1) +
+                       (p2.err() * w2 + (p3.err() * w3 + det2.err() * w4));
+    // Stored so that p.err() = kC * perm + kAbs is the bound of (O14).
+    p.perm = (16 * kU * s1a + s2a) * (1.0 + 32 * kU) / kC;
+  }
   if (p.v <= -p.err()) {
     st = kStageFilter;
     return 0;
