@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "f_derivatives.hpp"
 #include "sym3.hpp"
 
 namespace pw85 {
@@ -58,15 +59,8 @@ inline bool f_eval_adj(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const 
   double const phi2 = 2.0 * dot(u0, v0) * id3;
   double const phi3 = -6.0 * dot(v0, w0) * id4;
   double const phi4 = 24.0 * dot(w0, x0) * (id4 * id);
-  double const p = lambda * (1.0 - lambda);
-  double const p1 = 1.0 - 2.0 * lambda;
-  e.phi = phi;
-  e.dphi = phi1;
-  e.f = p * phi;
-  e.df = p1 * phi + p * phi1;
-  e.d2f = -2.0 * phi + 2.0 * p1 * phi1 + p * phi2;
-  e.d3f = -6.0 * phi1 + 3.0 * p1 * phi2 + p * phi3;
-  e.d4f = -12.0 * phi2 + 4.0 * p1 * phi3 + p * phi4;
+  set_f_from_phi(lambda, phi, phi1, phi2, phi3, e);
+  e.d4f = -12.0 * phi2 + 4.0 * (1.0 - 2.0 * lambda) * phi3 + lambda * (1.0 - lambda) * phi4;
   return det > 0.0 && phi > 0.0 && std::isfinite(e.f) && std::isfinite(e.df) &&
          std::isfinite(e.d2f) && std::isfinite(e.d3f) && std::isfinite(e.d4f);
 }
