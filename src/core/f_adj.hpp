@@ -22,11 +22,6 @@ struct AdjEval {
   Vec3 s;
 };
 
-inline Sym3 adjugate3(Sym3 const &q) noexcept {
-  return Sym3{{q[3] * q[5] - q[4] * q[4], q[2] * q[4] - q[1] * q[5], q[1] * q[4] - q[2] * q[3],
-               q[0] * q[5] - q[2] * q[2], q[1] * q[2] - q[0] * q[4], q[0] * q[3] - q[1] * q[1]}};
-}
-
 // f and its first four derivatives at lambda. The dependency chain of (M16)
 // is kept short: the products with C = adj Q are formed unnormalised
 // (C r = det s, D C r = det u, C D C r = det^2 v, ...) and the powers of

@@ -303,15 +303,8 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
     double const nu = 1.0 - l;
     Sym3 q;
     for (int i = 0; i < kSym; ++i) q[i] = nu * q1[i] + l * q2[i];
-    double m[6];
-    m[0] = q[3] * q[5] - q[4] * q[4];
-    m[1] = q[2] * q[4] - q[1] * q[5];
-    m[2] = q[1] * q[4] - q[2] * q[3];
-    m[3] = q[0] * q[5] - q[2] * q[2];
-    m[4] = q[1] * q[2] - q[0] * q[4];
-    m[5] = q[0] * q[3] - q[1] * q[1];
-    double const dq = q[0] * m[0] + q[1] * m[1] + q[2] * m[2];
-    Sym3 const adj{{m[0], m[1], m[2], m[3], m[4], m[5]}};
+    Sym3 const adj = adjugate3(q);
+    double const dq = q[0] * adj[0] + q[1] * adj[1] + q[2] * adj[2];
     Vec3 const s = multiply(adj, r);
     Vec3 x = multiply(q1, s);
     double const w = nu / dq;

@@ -87,6 +87,12 @@ inline Vec3 cholesky_solve(Sym3 const &l, Vec3 const &b) noexcept {
   return x;
 }
 
+// Adjugate (matrix of cofactors) of a symmetric matrix: adj(Q) Q = det(Q) I.
+inline Sym3 adjugate3(Sym3 const &q) noexcept {
+  return Sym3{{q[3] * q[5] - q[4] * q[4], q[2] * q[4] - q[1] * q[5], q[1] * q[4] - q[2] * q[3],
+               q[0] * q[5] - q[2] * q[2], q[1] * q[2] - q[0] * q[4], q[0] * q[3] - q[1] * q[1]}};
+}
+
 inline bool all_finite(double const *p, int n) noexcept {
   for (int i = 0; i < n; ++i)
     if (!std::isfinite(p[i])) return false;
