@@ -36,10 +36,15 @@
 // the contact function and FCL rows.
 // Batch: n random class-0 ellipsoids with centres uniform in a cube of side
 // 2 n^(1/3) (so random pairs range from overlapping to far apart), m random
-// index pairs (i != j); wall-clock time of pw85_overlap_batch and
-// pw85_contact_batch with nthreads = 1 and 2 (one untimed pass each, then
-// --batch-reps passes alternating 1 and 2 threads), median over the passes,
-// speed-up = median time (1 thread) / median time (2 threads).
+// index pairs (i != j), in random order and sorted by (i, j); wall-clock
+// time of pw85_overlap_batch, pw85_contact_function_batch, pw85_contact_batch
+// and of a compute-only control loop (std::threads, no library call: what the
+// shared machine offers at that moment) with nthreads = 1 and 2 (one untimed
+// pass each, then --batch-reps passes alternating 1 and 2 threads), median,
+// min and max over the passes, speed-up = median time (1 thread) / median
+// time (2 threads); a line per function with the ratio of each interleaved
+// pair of passes, their median, the ratio of the fastest passes and the load
+// averages before and after (docs/batch.md).
 #include <algorithm>
 #include <chrono>
 #include <cinttypes>
@@ -48,6 +53,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <hdf5.h>
@@ -510,39 +516,98 @@ int main(int argc, char **argv) {
     }
     std::snprintf(name, sizeof name, "batch/%lld/%lld/%s", batch_n, batch_m,
                   order ? "sorted" : "random");
-    for (int fn = 0; fn < 2; ++fn) {
-      // One untimed pass (caches, OpenMP thread pool), then reps passes
-      // alternating 1 and 2 threads, so that load from other processes on
-      // the shared machine hits both alike.
-      std::vector<double> w[3];
+    // Functions: 0 pw85_overlap_batch, 1 pw85_contact_function_batch,
+    // 2 pw85_contact_batch, 3 control (a compute-only loop split over 1 or
+    // 2 std::threads, no library call: the speed-up the machine itself
+    // offers during the run; on the shared 2-core VM other processes take
+    // a core whenever the load average is above ~0).
+    for (int fn = 0; fn < 4; ++fn) {
+      // One untimed pass (caches, page faults of the outputs, OpenMP thread
+      // pool), then reps passes alternating 1 and 2 threads, so that load
+      // from other processes on the shared machine hits both alike; each
+      // (1-thread, 2-thread) pair of consecutive passes gives one ratio.
+      std::vector<double> w[3], ratios;
+      std::vector<double> out2(fn == 1 ? 2 * batch_m : 0);
       int status[3] = {0, 0, 0};
-      for (int rep = -1; rep < batch_reps; ++rep)
+      double load0[3] = {0, 0, 0}, load1[3] = {0, 0, 0};
+      if (getloadavg(load0, 3) < 0) load0[0] = load0[1] = load0[2] = -1.0;
+      volatile double control_sink = 0.0;
+      for (int rep = -1; rep < batch_reps; ++rep) {
+        double pass[3] = {0, 0, 0};
         for (int threads = 1; threads <= 2; ++threads) {
           auto const t0 = std::chrono::steady_clock::now();
-          status[threads] = fn == 0 ? pw85_overlap_batch(batch_n, centres.data(), q.data(), batch_m,
-                                                         pairs.data(), ov.data(), st.data(), threads)
-                                    : pw85_contact_batch(batch_n, centres.data(), q.data(), batch_m,
-                                                         pairs.data(), ct.data(), st.data(), threads);
+          if (fn == 0)
+            status[threads] = pw85_overlap_batch(batch_n, centres.data(), q.data(), batch_m,
+                                                 pairs.data(), ov.data(), st.data(), threads);
+          else if (fn == 1)
+            status[threads] = pw85_contact_function_batch(batch_n, centres.data(), q.data(), batch_m,
+                                                          pairs.data(), out2.data(), st.data(), threads);
+          else if (fn == 2)
+            status[threads] = pw85_contact_batch(batch_n, centres.data(), q.data(), batch_m,
+                                                 pairs.data(), ct.data(), st.data(), threads);
+          else {
+            // batch_m iterations of 20 dependent square roots (~50 ns each).
+            double part[2] = {0.0, 0.0};
+            auto work = [&part, batch_m, threads](int id) {
+              double s = 0.0;
+              for (long long k = id; k < batch_m; k += threads) {
+                double x = (double)k;
+                for (int it = 0; it < 20; ++it) x = std::sqrt(x + 1.0);
+                s += x;
+              }
+              part[id] = s;
+            };
+            if (threads == 1) {
+              work(0);
+            } else {
+              std::thread helper(work, 1);
+              work(0);
+              helper.join();
+            }
+            control_sink = control_sink + part[0] + part[1];
+          }
           auto const t1 = std::chrono::steady_clock::now();
-          if (rep >= 0)
-            w[threads].push_back(std::chrono::duration<double, std::nano>(t1 - t0).count() /
-                                 (double)batch_m);
+          pass[threads] = std::chrono::duration<double, std::nano>(t1 - t0).count() / (double)batch_m;
+          if (rep >= 0) w[threads].push_back(pass[threads]);
         }
+        if (rep >= 0) ratios.push_back(pass[1] / pass[2]);
+      }
+      if (getloadavg(load1, 3) < 0) load1[0] = load1[1] = load1[2] = -1.0;
+      char const *fname = fn == 0 ? "pw85_overlap_batch"
+                          : fn == 1 ? "pw85_contact_function_batch"
+                          : fn == 2 ? "pw85_contact_batch" : "control_compute";
       double const t1thread = median(w[1]);
       for (int threads = 1; threads <= 2; ++threads) {
         double const med = median(w[threads]);
-        char const *fname = fn == 0 ? "pw85_overlap_batch" : "pw85_contact_batch";
         char label[64];
         std::snprintf(label, sizeof label, "%s/%dthr", fname, threads);
         double const mn = *std::min_element(w[threads].begin(), w[threads].end());
         double const mx = *std::max_element(w[threads].begin(), w[threads].end());
         double const speedup = t1thread / med;
-        std::printf("%-22s %-22s %6lld %7s %9.1f %9.1f %9.1f %6s %5d %7.2f\n", name, label,
+        std::printf("%-22s %-34s %6lld %7s %9.1f %9.1f %9.1f %6s %5d %7.2f\n", name, label,
                     batch_m, "-", med, mn, mx, "-", status[threads] != PW85_OK, speedup);
         std::fprintf(csv, "%s,%s,%lld,0,%.2f,%.2f,%.2f,,%d,%.3f\n", name, label, batch_m, med,
                      mn, mx, status[threads] != PW85_OK, speedup);
-        std::fflush(stdout);
       }
+      // Spread of the speed-up: the ratio of each interleaved pair of passes,
+      // their median, and the ratio of the fastest passes (the least disturbed).
+      std::string rs;
+      for (double r : ratios) {
+        char buf[16];
+        std::snprintf(buf, sizeof buf, " %.2f", r);
+        rs += buf;
+      }
+      double const best = *std::min_element(w[1].begin(), w[1].end()) /
+                          *std::min_element(w[2].begin(), w[2].end());
+      std::printf("  %s speed-up per pass:%s; median %.2f, ratio of fastest passes %.2f; "
+                  "load average (1/5/15 min) %.2f %.2f %.2f before, %.2f %.2f %.2f after\n",
+                  fname, rs.c_str(), median(ratios), best, load0[0], load0[1], load0[2],
+                  load1[0], load1[1], load1[2]);
+      std::fprintf(csv, "# %s %s speed-up per pass:%s; median %.3f; fastest-pass ratio %.3f; "
+                        "loadavg %.2f %.2f %.2f before, %.2f %.2f %.2f after\n",
+                   name, fname, rs.c_str(), median(ratios), best, load0[0], load0[1], load0[2],
+                   load1[0], load1[1], load1[2]);
+      std::fflush(stdout);
     }
     }
     long long noverlap = 0;
