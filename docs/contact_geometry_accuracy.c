@@ -102,7 +102,7 @@ static void run(hid_t f, const char *group, int cls) {
     e[0][k] = (double)fmaxl((long double)fab(p1), (long double)fab(p2));
     e[1][k] = (double)fmaxl((long double)fab(b1), (long double)fab(b2));
     long double n1 = sqrtl((long double)dot(g1, g1)), n2 = sqrtl((long double)dot(g2, g2));
-    long double nx = sqrtl((long double)dot(x0, x0));
+    long double nx = fmaxl(fmaxl(fabsl((long double)x0[0]), fabsl((long double)x0[1])), fabsl((long double)x0[2]));
     double eo = 0, ex = 0, en = 0;
     for (int d = 0; d < 3; d++) {
       eo = fmax(eo, fabsl((long double)g1[d] / n1 + (long double)g2[d] / n2));

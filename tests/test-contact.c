@@ -94,14 +94,16 @@ static void exact_geometry(const double r[3], const double q1[6], const double q
  *           rounding x0* to double alone gives 1.7e-11 in class 3);
  *   opp:    |m1 + m2|_max, m1, m2 the unit outward normals of the two
  *           surfaces through the double x0 (the rounding of x0 tilts the
- *           normal of a needle-like ellipsoid: rounding x0* gives ~1e-5 in
- *           class 3; n itself is within the n bound of the exact normal). */
-static const double kTolX0[4] = {1e-15, 1e-13, 1e-13, 1e-13};
-static const double kTolN[4] = {5e-16, 5e-15, 2e-14, 2e-14};
-static const double kTolLambda[4] = {3e-16, 2e-14, 3e-14, 6e-14};
-static const double kTolSurf[4] = {5e-16, 2e-14, 5e-14, 5e-14};
-static const double kTolPoint[4] = {3e-15, 2e-13, 6e-12, 6e-11};
-static const double kTolOpp[4] = {3e-15, 2e-12, 2e-8, 3e-5};
+ *           normal of a needle-like ellipsoid: ~2e-6 in class 3; n itself
+ *           is within the n bound of the exact normal).
+ * x0, n, lambda and surf are within ~1 ulp: the issue's 1e-12 holds in
+ * every class; pt and opp are limited by the rounding of x0 to double. */
+static const double kTolX0[4] = {3e-16, 3e-16, 3e-16, 1.5e-15};
+static const double kTolN[4] = {3e-16, 3e-16, 3e-16, 3e-16};
+static const double kTolLambda[4] = {1e-16, 1e-16, 1e-16, 1e-16};
+static const double kTolSurf[4] = {2.5e-16, 2.5e-16, 2.5e-16, 2.5e-16};
+static const double kTolPoint[4] = {1e-15, 1e-14, 4e-13, 2e-11};
+static const double kTolOpp[4] = {1e-15, 3e-13, 3e-9, 3e-6};
 
 /* Checks one pair of class cls against the reference mu2_ref
  * (exact-arithmetic value). full: also compare with the other entry

@@ -32,7 +32,7 @@ namespace {
 constexpr double kU = 0x1p-53;
 // Target relative accuracy of x0 and n (and of |f'(lambda)| / mu^2) on the
 // fast path; the slow path is taken when the estimate exceeds it.
-constexpr double kTol = 0x1p-40;  // 9.1e-13
+constexpr double kTol = 0x1p-43;  // 1.1e-13
 constexpr int kMaxNewton = 6;
 
 inline double max_abs(Vec3 const &v) noexcept {
@@ -47,11 +47,33 @@ inline Vec3 abs_multiply(Sym3 const &a, Vec3 const &x) noexcept {
   return multiply(b, y);
 }
 
-// Fast path (G8, G9, G11): s by Cholesky in double refined once with the
-// double-double residual; then lambda is corrected to first order by one
-// Newton step on f' = 0 and x0, s moved along their derivatives (G11).
-// Returns true, with lambda, x0 and n, when the estimated relative errors of
-// x0 and n are below kTol; false sends the pair to the slow path.
+// Cholesky factor with the reciprocals of its diagonal, so that the three
+// solves of the fast path multiply instead of divide.
+struct CholInv {
+  Sym3 l;
+  double i0, i1, i2;
+};
+
+inline bool chol_inv(Sym3 const &a, CholInv &c) noexcept {
+  if (!cholesky(a, c.l)) return false;
+  c.i0 = 1.0 / c.l[0];
+  c.i1 = 1.0 / c.l[3];
+  c.i2 = 1.0 / c.l[5];
+  return true;
+}
+
+inline Vec3 chol_solve(CholInv const &c, Vec3 const &b) noexcept {
+  Sym3 const &l = c.l;
+  double const y0 = b[0] * c.i0;
+  double const y1 = (b[1] - l[1] * y0) * c.i1;
+  double const y2 = (b[2] - l[2] * y0 - l[4] * y1) * c.i2;
+  Vec3 x;
+  x[2] = y2 * c.i2;
+  x[1] = (y1 - l[4] * x[2]) * c.i1;
+  x[0] = (y0 - l[1] * x[1] - l[2] * x[2]) * c.i0;
+  return x;
+}
+
 // What the fast path learnt, for the slow path: the Newton-corrected lambda
 // (start), the slope f'' (0 if unknown) and the rates |x0'| / |x0|,
 // |s'| / |s| that turn a step in lambda into relative changes of x0 and n.
@@ -59,34 +81,53 @@ struct FastInfo {
   double start, slope = 0.0, rate = 0.0;
 };
 
+// Fast path (G8, G9, G11): s by Cholesky in double refined once with the
+// double-double residual, kept as the unevaluated sum s0 + delta; x0 and
+// f'(lambda) from it in double-double (refined_point_impl, f_dd.hpp); then
+// lambda is corrected to first order by one Newton step on f' = 0 and x0, s
+// moved along their derivatives (G11). Returns true, with lambda, x0 and n,
+// when the estimated relative errors of x0 and n are below kTol; false sends
+// the pair to the slow path.
 bool fast_point(double &lambda_io, Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Vec3 &x0,
                 Vec3 &n, FastInfo &info) noexcept {
   double const lambda = lambda_io;
+  double const nu = 1.0 - lambda;
   info.start = lambda;
-  Sym3 l;
-  if (!cholesky(interpolate(q1, q2, lambda), l)) return false;
-  Vec3 s = cholesky_solve(l, r);
-  Vec3 const delta = cholesky_solve(l, residual_dd(lambda, r, q1, q2, s));
-  double const smax = max_abs(s);
-  // Relative error of the double solve (estimated by the correction, G8)
-  // and, to first order, of the corrected s: es^2, plus its rounding.
+  if (!(lambda > 0.0 && nu > 0.0)) return false;
+  CholInv c;
+  if (!chol_inv(interpolate(q1, q2, lambda), c)) return false;
+  Sym3 const &l = c.l;
+  Vec3 const s0 = chol_solve(c, r);
+  Vec3 const delta = chol_solve(c, residual_dd(lambda, r, q1, q2, s0));
+  double const smax = max_abs(s0);
+  // Relative error of the double solve, estimated by the correction (G8),
+  // and of s0 + delta: the correction's own relative error (~es, or the
+  // condition estimate from the Cholesky diagonal times u if larger) times es.
   double const es = max_abs(delta) / smax;
   if (!(es <= 1e-6)) return false;
-  double const es1 = 2.0 * kU + 4.0 * es * es;
-  for (int i = 0; i < kDim; ++i) s[i] += delta[i];
-  Vec3 const t1 = multiply(q1, s), t2 = multiply(q2, s);
+  double const dmin = std::fmin(l[0], std::fmin(l[3], l[5]));
+  double const dmax = std::fmax(l[0], std::fmax(l[3], l[5]));
+  double const kappa_u = (dmax / dmin) * (dmax / dmin) * kU;
+  double const es1 = 4.0 * es * std::fmax(es, kappa_u) + 0x1p-100;
+  Vec3 xb, t2;  // (1 - lambda) Q1 (s0 + delta), Q2 (s0 + delta)
+  double const fp = refined_point_dd(lambda, q1, q2, s0, delta, xb, t2);
+  Vec3 s, t1;
+  for (int i = 0; i < kDim; ++i) {
+    s[i] = s0[i] + delta[i];
+    t1[i] = xb[i] / nu;
+  }
   Vec3 const sa{{std::fabs(s[0]), std::fabs(s[1]), std::fabs(s[2])}};
   Vec3 const a1 = abs_multiply(q1, s), a2 = abs_multiply(q2, s);
-  double const nu = 1.0 - lambda;
-  // f'(lambda) (G9) and a bound of its evaluation error.
-  double const fp = nu * nu * dot(s, t1) - lambda * lambda * dot(s, t2);
-  double const efp = (8.0 * kU + 6.0 * es1) * (nu * nu * dot(a1, sa) + lambda * lambda * dot(a2, sa));
+  // Error bound of f'(lambda) (G9): error of s0 + delta (first order), the
+  // double-double evaluation, the final rounding.
+  double const big = nu * nu * dot(a1, sa) + lambda * lambda * dot(a2, sa);
+  double const efp = (6.0 * es1 + 0x1p-100) * big + 2.0 * kU * std::fabs(fp);
   // Derivatives (G11): s' = -v with v = Q^{-1} D s, D = Q2 - Q1;
   // f'' = -2 phi + 2 (1 - 2 lambda) phi' + lambda (1 - lambda) phi'',
   // phi = r.s, phi' = -s.D s, phi'' = 2 (D s).v; x0' = -Q1 s - (1 - lambda) Q1 v.
   Vec3 ds;
   for (int i = 0; i < kDim; ++i) ds[i] = t2[i] - t1[i];
-  Vec3 const v = cholesky_solve(l, ds);
+  Vec3 const v = chol_solve(c, ds);
   double const d2f = -2.0 * dot(r, s) - 2.0 * (1.0 - 2.0 * lambda) * dot(s, ds) +
                      2.0 * lambda * nu * dot(ds, v);
   if (!(d2f < 0.0)) return false;
@@ -97,18 +138,18 @@ bool fast_point(double &lambda_io, Vec3 const &r, Sym3 const &q1, Sym3 const &q2
   info.slope = d2f;
   Vec3 xd;
   for (int i = 0; i < kDim; ++i) xd[i] = -t1[i] - nu * q1v[i];
-  double const xmax = nu * max_abs(t1), xdmax = max_abs(xd), vrel = max_abs(v) / smax;
+  double const xmax = max_abs(xb), xdmax = max_abs(xd), vrel = max_abs(v) / smax;
   info.start = lambda + dl;
   info.rate = std::fmax(xdmax / xmax, vrel);
-  // x0: rounding and solve error amplified by Q1 (|Q1||s| / |Q1 s|), error
-  // of the step dl, second-order term of the step (|x0''| ~ 2 |x0'| |v| / |s|),
-  // first-order error of v (relative es) times the step.
-  double const ex = (max_abs(a1) / max_abs(t1)) * (es1 + 4.0 * kU) +
-                    xdmax * (edl + 2.0 * vrel * dl * dl + es * std::fabs(dl)) / xmax;
-  double const en = es1 + 4.0 * kU + vrel * (edl + 2.0 * vrel * dl * dl + es * std::fabs(dl));
+  // x0: error of s0 + delta amplified by Q1 (|Q1||s| / |Q1 s|), roundings,
+  // error of the step dl, second-order term of the step (|x0''| ~
+  // 2 |x0'| |v| / |s|), first-order error of v (relative es) times the step.
+  double const step = edl + 2.0 * vrel * dl * dl + es * std::fabs(dl);
+  double const ex = (nu * max_abs(a1) / xmax) * es1 + 3.0 * kU + xdmax * step / xmax;
+  double const en = es1 + 4.0 * kU + vrel * step;
   if (!(ex <= kTol && en <= kTol)) return false;
   for (int i = 0; i < kDim; ++i) {
-    x0[i] = nu * t1[i] + xd[i] * dl;
+    x0[i] = xb[i] + xd[i] * dl;
     s[i] -= v[i] * dl;
   }
   double const ns = std::sqrt(dot(s, s));

@@ -35,6 +35,12 @@ __attribute__((target("fma"))) bool contact_point_dd_fma(double lambda, Vec3 con
                                                         double &df) noexcept {
   return contact_point_dd_impl<true>(lambda, r, q1, q2, x0, n, df);
 }
+__attribute__((target("fma"))) double refined_point_dd_fma(double lambda, Sym3 const &q1,
+                                                         Sym3 const &q2, Vec3 const &s,
+                                                         Vec3 const &delta, Vec3 &x0,
+                                                         Vec3 &q2s) noexcept {
+  return refined_point_impl<true>(lambda, q1, q2, s, delta, x0, q2s);
+}
 inline bool cpu_has_fma() noexcept { return __builtin_cpu_supports("fma"); }
 #endif
 }  // namespace
@@ -84,6 +90,18 @@ bool contact_point_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &
   if (cpu_has_fma()) return contact_point_dd_fma(lambda, r, q1, q2, x0, n, df);
 #endif
   return contact_point_dd_impl<false>(lambda, r, q1, q2, x0, n, df);
+#endif
+}
+
+double refined_point_dd(double lambda, Sym3 const &q1, Sym3 const &q2, Vec3 const &s,
+                        Vec3 const &delta, Vec3 &x0, Vec3 &q2s) noexcept {
+#if defined(PW85_DD_STATIC_FMA)
+  return refined_point_impl<true>(lambda, q1, q2, s, delta, x0, q2s);
+#else
+#if defined(PW85_DD_DISPATCH)
+  if (cpu_has_fma()) return refined_point_dd_fma(lambda, q1, q2, s, delta, x0, q2s);
+#endif
+  return refined_point_impl<false>(lambda, q1, q2, s, delta, x0, q2s);
 #endif
 }
 

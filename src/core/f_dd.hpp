@@ -132,48 +132,56 @@ PW85_ALWAYS_INLINE double f_stationary_impl(double lambda, Vec3 const &r, Sym3 c
   return to_double(mul<F>(mul<F>(bracket, om), lambda));
 }
 
-// Residual rho = r - Q(lambda) s of a double-precision s, with Q(lambda)
-// formed exactly and the products and sums in double-double, rounded to
-// double at the end: accurate to a few ulps of rho even when |rho| << |Q||s|
+// Compensated dot product of two 3-vectors (Ogita, Rump and Oishi, SIAM J.
+// Sci. Comput. 26(6), 2005, algorithm Dot2): exact products, error-free
+// running sum, errors accumulated in double; returns the unevaluated pair
+// (sum, correction), accurate as if computed in twice the working precision.
+template <bool F>
+PW85_ALWAYS_INLINE dd::DD dot3_c(double a0, double a1, double a2, double b0, double b1,
+                                 double b2) noexcept {
+  using namespace dd;
+  DD const p0 = two_prod<F>(a0, b0), p1 = two_prod<F>(a1, b1), p2 = two_prod<F>(a2, b2);
+  DD const u = two_sum(p0.hi, p1.hi);
+  DD const w = two_sum(u.hi, p2.hi);
+  return DD{w.hi, ((p0.lo + p1.lo) + (p2.lo + u.lo)) + w.lo};
+}
+
+// Residual rho = r - Q(lambda) s of a double-precision s, with
+// Q(lambda) s = (1 - lambda) Q1 s + lambda Q2 s from compensated dot products
+// and 1 - lambda exact: accurate to a few ulps of rho plus ~2^-100 |Q||s|
 // (iterative refinement, docs/contact_geometry.md, eq. (G8)).
 template <bool F>
 PW85_ALWAYS_INLINE Vec3 residual_dd_impl(double lambda, Vec3 const &r, Sym3 const &q1,
                                          Sym3 const &q2, Vec3 const &s) noexcept {
   using namespace dd;
   DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
-  DD q[kSym];
-  for (int i = 0; i < kSym; ++i) {
-    DD a = two_prod<F>(om.hi, q1[i]);
-    a = add(a, om.lo * q1[i]);
-    q[i] = add(a, two_prod<F>(lambda, q2[i]));
-  }
   static constexpr int kIdx[kDim][kDim] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
   Vec3 rho;
   for (int i = 0; i < kDim; ++i) {
-    DD acc{r[i], 0.0};
-    for (int j = 0; j < kDim; ++j) acc = sub(acc, mul<F>(q[kIdx[i][j]], s[j]));
-    rho[i] = to_double(acc);
+    int const *k = kIdx[i];
+    DD const t1 = dot3_c<F>(q1[k[0]], q1[k[1]], q1[k[2]], s[0], s[1], s[2]);
+    DD const t2 = dot3_c<F>(q2[k[0]], q2[k[1]], q2[k[2]], s[0], s[1], s[2]);
+    DD const a = two_prod<F>(om.hi, t1.hi);
+    DD const b = two_prod<F>(lambda, t2.hi);
+    DD const x = two_sum(r[i], -a.hi);
+    DD const y = two_sum(x.hi, -b.hi);
+    double const low = (om.hi * t1.lo + om.lo * t1.hi) + lambda * t2.lo;
+    rho[i] = y.hi + (((x.lo + y.lo) - (a.lo + b.lo)) - low);
   }
   return rho;
 }
 
-// Contact point, normal and f' at lambda in double-double
-// (docs/contact_geometry.md, eqs. (G1), (G2), (G9)): s = Q(lambda)^{-1} r by
-// solve_dd_impl, x0 = (1 - lambda) Q1 s, n = s / |s| and
-// f'(lambda) = (1 - lambda)^2 s^T Q1 s - lambda^2 s^T Q2 s, each rounded to
-// double at the end. Returns false when Q(lambda) is not positive definite
-// in double-double or a value is not finite.
+// From s = Q(lambda)^{-1} r given as double-doubles: x0 = (1 - lambda) Q1 s
+// and Q2 s rounded to double, and f'(lambda) = (1 - lambda)^2 s^T Q1 s -
+// lambda^2 s^T Q2 s (docs/contact_geometry.md, eqs. (G1), (G9)) in
+// double-double, rounded at the end.
 template <bool F>
-PW85_ALWAYS_INLINE bool contact_point_dd_impl(double lambda, Vec3 const &r, Sym3 const &q1,
-                                              Sym3 const &q2, Vec3 &x0, Vec3 &n,
-                                              double &df) noexcept {
+PW85_ALWAYS_INLINE double point_from_s_impl(double lambda, Sym3 const &q1, Sym3 const &q2,
+                                            dd::DD const s[kDim], Vec3 &x0, Vec3 &q2s) noexcept {
   using namespace dd;
-  DD s[kDim], phi;
-  if (!solve_dd_impl<F>(lambda, r, q1, q2, s, phi)) return false;
   DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
   static constexpr int kIdx[kDim][kDim] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
   DD sq1{0.0, 0.0}, sq2{0.0, 0.0};
-  double ss = 0.0;
   for (int i = 0; i < kDim; ++i) {
     DD t1{0.0, 0.0}, t2{0.0, 0.0};  // (Q1 s)_i, (Q2 s)_i
     for (int j = 0; j < kDim; ++j) {
@@ -181,16 +189,75 @@ PW85_ALWAYS_INLINE bool contact_point_dd_impl(double lambda, Vec3 const &r, Sym3
       t2 = add(t2, mul<F>(s[j], q2[kIdx[i][j]]));
     }
     x0[i] = to_double(mul<F>(t1, om));
+    q2s[i] = to_double(t2);
     sq1 = add(sq1, mul<F>(s[i], t1));
     sq2 = add(sq2, mul<F>(s[i], t2));
+  }
+  return to_double(sub(mul<F>(mul<F>(sq1, om), om), mul<F>(mul<F>(sq2, lambda), lambda)));
+}
+
+// Contact point, normal and f' at lambda in double-double
+// (docs/contact_geometry.md, eqs. (G1), (G2), (G9)): s = Q(lambda)^{-1} r by
+// solve_dd_impl, then point_from_s_impl; n = s / |s|. Returns false when
+// Q(lambda) is not positive definite in double-double or a value is not
+// finite.
+template <bool F>
+PW85_ALWAYS_INLINE bool contact_point_dd_impl(double lambda, Vec3 const &r, Sym3 const &q1,
+                                              Sym3 const &q2, Vec3 &x0, Vec3 &n,
+                                              double &df) noexcept {
+  using namespace dd;
+  DD s[kDim], phi;
+  if (!solve_dd_impl<F>(lambda, r, q1, q2, s, phi)) return false;
+  Vec3 q2s;
+  df = point_from_s_impl<F>(lambda, q1, q2, s, x0, q2s);
+  double ss = 0.0;
+  for (int i = 0; i < kDim; ++i) {
     n[i] = to_double(s[i]);
     ss += n[i] * n[i];
   }
   double const ns = std::sqrt(ss);
   for (int i = 0; i < kDim; ++i) n[i] /= ns;
-  df = to_double(sub(mul<F>(mul<F>(sq1, om), om), mul<F>(mul<F>(sq2, lambda), lambda)));
   return std::isfinite(df) && std::isfinite(x0[0]) && std::isfinite(x0[1]) &&
          std::isfinite(x0[2]) && ns > 0.0 && std::isfinite(ns);
+}
+
+// The same as point_from_s_impl from a refined double solve s + delta
+// (unevaluated sum, |delta| <= 1e-6 |s|), for the fast path of
+// contact_geometry (eq. (G8)): Qk s = Qk s (compensated dot products) +
+// Qk delta (double, its error is ~1e-6 u relative), s^T Qk s likewise;
+// returns f'(lambda), x0 and Q2 s rounded to double.
+template <bool F>
+PW85_ALWAYS_INLINE double refined_point_impl(double lambda, Sym3 const &q1, Sym3 const &q2,
+                                             Vec3 const &s, Vec3 const &delta, Vec3 &x0,
+                                             Vec3 &q2s) noexcept {
+  using namespace dd;
+  DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
+  static constexpr int kIdx[kDim][kDim] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+  DD t1[kDim], t2[kDim];
+  for (int i = 0; i < kDim; ++i) {
+    int const *k = kIdx[i];
+    DD const a = dot3_c<F>(q1[k[0]], q1[k[1]], q1[k[2]], s[0], s[1], s[2]);
+    DD const b = dot3_c<F>(q2[k[0]], q2[k[1]], q2[k[2]], s[0], s[1], s[2]);
+    double const da = q1[k[0]] * delta[0] + q1[k[1]] * delta[1] + q1[k[2]] * delta[2];
+    double const db = q2[k[0]] * delta[0] + q2[k[1]] * delta[1] + q2[k[2]] * delta[2];
+    t1[i] = fast_two_sum(a.hi, a.lo + da);
+    t2[i] = fast_two_sum(b.hi, b.lo + db);
+    DD const x = two_prod<F>(om.hi, t1[i].hi);
+    x0[i] = x.hi + (x.lo + (om.hi * t1[i].lo + om.lo * t1[i].hi));
+    q2s[i] = t2[i].hi + t2[i].lo;
+  }
+  // s^T Qk s = s . (Qk s)_hi (compensated) + s . (Qk s)_lo + delta . (Qk s)_hi.
+  DD const c1 = dot3_c<F>(s[0], s[1], s[2], t1[0].hi, t1[1].hi, t1[2].hi);
+  DD const c2 = dot3_c<F>(s[0], s[1], s[2], t2[0].hi, t2[1].hi, t2[2].hi);
+  double const l1 = (s[0] * t1[0].lo + s[1] * t1[1].lo + s[2] * t1[2].lo) +
+                    (delta[0] * t1[0].hi + delta[1] * t1[1].hi + delta[2] * t1[2].hi);
+  double const l2 = (s[0] * t2[0].lo + s[1] * t2[1].lo + s[2] * t2[2].lo) +
+                    (delta[0] * t2[0].hi + delta[1] * t2[1].hi + delta[2] * t2[2].hi);
+  DD const sq1 = fast_two_sum(c1.hi, c1.lo + l1), sq2 = fast_two_sum(c2.hi, c2.lo + l2);
+  // (1 - lambda)^2 sq1 - lambda^2 sq2 with (1 - lambda)^2, lambda^2 as double-doubles.
+  DD const nu2 = mul<F>(om, om), la2 = two_prod<F>(lambda, lambda);
+  DD const p1 = mul<F>(nu2, sq1), p2 = mul<F>(la2, sq2);
+  return to_double(sub(p1, p2));
 }
 
 // Dispatching wrappers (dd_kernels.cpp): the FMA variant when the CPU has it.
@@ -202,5 +269,7 @@ Vec3 residual_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                  Vec3 const &s) noexcept;
 bool contact_point_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                       Vec3 &x0, Vec3 &n, double &df) noexcept;
+double refined_point_dd(double lambda, Sym3 const &q1, Sym3 const &q2, Vec3 const &s,
+                        Vec3 const &delta, Vec3 &x0, Vec3 &q2s) noexcept;
 
 }  // namespace pw85
