@@ -161,6 +161,9 @@ bool fast_point(double &lambda_io, Vec3 const &r, Sym3 const &q1, Sym3 const &q2
 
 Status contact_geometry(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                         ContactGeometry &g) noexcept {
+  // NaN until computed: an early kNoConvergence leaves no garbage.
+  double const nan = std::nan("");
+  g = ContactGeometry{nan, nan, {nan, nan, nan}, {nan, nan, nan}, nan, nan, nan};
   // PW85_METHOD_DEFAULT (src/core/default.cpp, docs/methods.md).
   MethodResult res;
   Status status = contact_method(kMethodDefault, r, q1, q2, res);

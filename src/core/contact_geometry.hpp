@@ -21,7 +21,8 @@ struct ContactGeometry {
 
 // Preconditions (checked by the C layer): r != 0, finite, q1 and q2 positive
 // definite. Returns kOk or the status of the contact-function solve
-// (kNoConvergence / kInaccurate: values still written).
+// (kNoConvergence / kInaccurate: values still written, NaN where the
+// geometry could not be computed).
 Status contact_geometry(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                         ContactGeometry &g) noexcept;
 
