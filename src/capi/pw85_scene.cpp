@@ -91,13 +91,10 @@ extern "C" {
 
 int pw85_overlap(double const r12[PW85_DIM], double const q1[PW85_SYM],
                  double const q2[PW85_SYM]) {
-  // The contract of validate_pair with L D L^T pivots instead of a Cholesky
-  // factorisation (no square roots; docs/overlap.md, "Validation").
-  if (r12 == nullptr || q1 == nullptr || q2 == nullptr) return PW85_ERR_INVALID_ARGUMENT;
-  if (!pw85::all_finite(r12, PW85_DIM) || !pw85::all_finite(q1, PW85_SYM) ||
-      !pw85::all_finite(q2, PW85_SYM))
-    return PW85_ERR_INVALID_ARGUMENT;
-  if (!pw85::ldl_positive(q1) || !pw85::ldl_positive(q2)) return PW85_ERR_NOT_SPD;
+  // L D L^T pivots instead of a Cholesky factorisation (docs/overlap.md,
+  // "Validation").
+  int const status = pw85::capi::validate_pair_ldl(r12, q1, q2);
+  if (status != PW85_OK) return status;
   int verdict = -1;
   int const s = pw85::overlap(pw85::load_vec3(r12), pw85::load_sym3(q1),
                               pw85::load_sym3(q2), verdict);

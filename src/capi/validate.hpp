@@ -23,5 +23,30 @@ inline Status validate_pair(double const *r12, double const *q1, double const *q
   return kOk;
 }
 
+// Positive definiteness by the pivots of L D L^T of the symmetric matrix a
+// (Sym3 storage): all > 0. No square roots; same decisions as the Cholesky
+// factorisation of validate_pair up to rounding. a must be finite.
+inline bool ldl_positive(double const *a) noexcept {
+  double const d0 = a[0];
+  if (!(d0 > 0.0)) return false;
+  double const i0 = 1.0 / d0;
+  double const l1 = a[1] * i0, l2 = a[2] * i0;
+  double const d1 = a[3] - l1 * a[1];
+  if (!(d1 > 0.0)) return false;
+  double const e = a[4] - l2 * a[1];
+  double const d2 = a[5] - l2 * a[2] - (e / d1) * e;  // no overflow of e * e
+  return d2 > 0.0 && d2 <= 0x1.fffffffffffffp1023;   // false for NaN, +Inf
+}
+
+// The contract of validate_pair with ldl_positive for the matrices (the
+// entry points on hot paths: pw85_overlap, pw85_contact_function_method).
+inline Status validate_pair_ldl(double const *r12, double const *q1, double const *q2) noexcept {
+  if (r12 == nullptr || q1 == nullptr || q2 == nullptr) return kInvalidArgument;
+  if (!all_finite(r12, kDim) || !all_finite(q1, kSym) || !all_finite(q2, kSym))
+    return kInvalidArgument;
+  if (!ldl_positive(q1) || !ldl_positive(q2)) return kNotSpd;
+  return kOk;
+}
+
 }  // namespace capi
 }  // namespace pw85

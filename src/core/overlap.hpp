@@ -27,22 +27,6 @@ enum OverlapStage : int {
   kStageExact = 3,     // Sturm sequence in exact integer arithmetic
 };
 
-// Positive definiteness check of the C layer (pw85_overlap): the pivots of
-// L D L^T of the symmetric matrix a (Sym3 storage) are all > 0; no square
-// roots, same decisions as a Cholesky factorisation up to rounding. a must
-// be finite.
-inline bool ldl_positive(double const *a) noexcept {
-  double const d0 = a[0];
-  if (!(d0 > 0.0)) return false;
-  double const i0 = 1.0 / d0;
-  double const l1 = a[1] * i0, l2 = a[2] * i0;
-  double const d1 = a[3] - l1 * a[1];
-  if (!(d1 > 0.0)) return false;
-  double const e = a[4] - l2 * a[1];
-  double const d2 = a[5] - l2 * a[2] - (e / d1) * e;  // no overflow of e * e
-  return d2 > 0.0 && d2 <= 0x1.fffffffffffffp1023;   // false for NaN, +Inf
-}
-
 // verdict = 1 (interiors intersect, mu^2 < 1) or 0 (mu^2 >= 1). Returns kOk,
 // kNotSpd (exact check) or kInaccurate (the exact stage ran out of its fixed
 // capacity: exponent spread of the inputs larger than documented); on error
