@@ -48,5 +48,24 @@ inline Status validate_pair_ldl(double const *r12, double const *q1, double cons
   return kOk;
 }
 
+// One pass over the arguments for the hot path of pw85_overlap: true when
+// q1 and q2 pass ldl_positive, |r_i| <= hi, |Q_ij| <= hi and max |Q_ij| >= lo
+// (so everything is finite: a NaN entry of a matrix reaches one of its
+// pivots, whose test fails; a NaN in r fails |r_i| <= hi). False does not
+// mean invalid: the caller then takes the general path (validate_pair_ldl,
+// scaling). Pointers must be non-null.
+inline bool screen_pair_ldl(double const *r, double const *q1, double const *q2, double lo,
+                            double hi) noexcept {
+  double qm = 0.0;
+  for (int i = 0; i < kSym; ++i) {
+    double const a = std::fabs(q1[i]), b = std::fabs(q2[i]);
+    qm = a > qm ? a : qm;  // a NaN is skipped here and caught by the pivots
+    qm = b > qm ? b : qm;
+  }
+  bool const r_ok =
+      (std::fabs(r[0]) <= hi) & (std::fabs(r[1]) <= hi) & (std::fabs(r[2]) <= hi);
+  return r_ok & (qm >= lo) & (qm <= hi) && ldl_positive(q1) && ldl_positive(q2);
+}
+
 }  // namespace capi
 }  // namespace pw85

@@ -22,7 +22,7 @@ constexpr double kC = 32 * kU;
 // Absolute term covering gradual underflow for inputs in the safe range
 // |Q_ij| <= 2^60, |r_i| <= 2^60 (eq. (O3), (O9)).
 constexpr double kAbs = 0x1p-800;
-constexpr double kRangeHi = 0x1p60, kRangeLo = 0x1p-60;
+constexpr double kRangeHi = kOverlapRangeHi, kRangeLo = kOverlapRangeLo;
 
 struct Bounded {
   double v;     // computed value
@@ -196,6 +196,23 @@ inline void mixed_adj(Sym3 const &a, Sym3 const &b, Sym3 const &aa, Sym3 const &
   ma[5] = (aa[0] * ba[3] + ba[0] * aa[3]) + 2.0 * (aa[1] * ba[1]);
 }
 
+// p(l) from its coefficients P_j in the basis s^(4-j) t^j (eq. (O14)),
+// s = 1 - l exact (l on the grid 2^-52 Z), with the bound of (O14) from the
+// rounding of the sum and the bounds E_j of the coefficients.
+inline Bounded p_bernstein(double l, double const P[5], double const E[5]) noexcept {
+  double const sv = 1.0 - l, t = l;
+  double const s2 = sv * sv, t2 = t * t;
+  double const w0 = s2 * s2, w1 = (s2 * sv) * t, w2 = s2 * t2, w3 = sv * (t2 * t), w4 = t2 * t2;
+  Bounded p;
+  p.v = (P[0] * w0 + P[1] * w1) + (P[2] * w2 + (P[3] * w3 + P[4] * w4));
+  double const s1a = (std::fabs(P[0]) * w0 + std::fabs(P[1]) * w1) +
+                     (std::fabs(P[2]) * w2 + (std::fabs(P[3]) * w3 + std::fabs(P[4]) * w4));
+  double const s2a = (E[0] * w0 + E[1] * w1) + (E[2] * w2 + (E[3] * w3 + E[4] * w4));
+  // Stored so that p.err() = kC * perm + kAbs is the bound of (O14).
+  p.perm = (16 * kU * s1a + s2a) * (1.0 + 32 * kU) / kC;
+  return p;
+}
+
 // Decided verdict (0 or 1) or kUndecided.
 constexpr int kUndecided = -1;
 
@@ -258,10 +275,15 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
   double const k1 = -4.0 * P0 + P1, k2 = 6.0 * P0 - 3.0 * P1 + P2;
   double const k3 = -4.0 * P0 + 3.0 * P1 - 2.0 * P2 + P3;
   double const k4 = P0 - P1 + P2 - P3 + P4;
+  double const Pc[5] = {P0, P1, P2, P3, P4};
+  double const Ec[5] = {det1.err(), p1.err(), p2.err(), p3.err(), det2.err()};
   double l = to_grid(h1 / (h1 + h2));
   if (!(l > 0.0 && l < 1.0)) l = 0.5;
   double lo = 0.0, hi = 1.0;
-  for (int it = 0; it < 6; ++it) {
+  Bounded p = p_bernstein(l, Pc, Ec);
+  // Every iterate is a candidate for (O14): a well-separated pair stops at
+  // the first l where p <= -bound, long before the minimum is found.
+  for (int it = 0; it < 6 && !(p.v <= -p.err()); ++it) {
     double const dp = k1 + l * (2.0 * k2 + l * (3.0 * k3 + l * (4.0 * k4)));
     double const d2p = 2.0 * k2 + l * (6.0 * k3 + l * (12.0 * k4));
     if (dp > 0.0)
@@ -271,27 +293,11 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
     double next = l - dp / d2p;
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     next = to_grid(next);
-    if (next == l) break;
+    if (!(next > 0.0 && next < 1.0) || next == l) break;
     bool const done = std::fabs(next - l) <= 0x1p-27;  // p(l) within ~u of min
     l = next;
+    p = p_bernstein(l, Pc, Ec);
     if (done) break;
-  }
-  if (!(l > 0.0 && l < 1.0)) return kUndecided;
-  // p(l) from the coefficients (eq. (O14)): w_j = s^(4-j) t^j with s = 1 - l
-  // exact (l on the grid), value sum P_j w_j, error bound from the
-  // rounding of the sum and the bounds E_j of the coefficients.
-  Bounded p;
-  {
-    double const sv = 1.0 - l, t = l;
-    double const s2 = sv * sv, t2 = t * t;
-    double const w0 = s2 * s2, w1 = (s2 * sv) * t, w2 = s2 * t2, w3 = sv * (t2 * t), w4 = t2 * t2;
-    p.v = (P0 * w0 + P1 * w1) + (P2 * w2 + (P3 * w3 + P4 * w4));
-    double const s1a = (std::fabs(P0) * w0 + std::fabs(P1) * w1) +
-                       (std::fabs(P2) * w2 + (std::fabs(P3) * w3 + std::fabs(P4) * w4));
-    double const s2a = (det1.err() * w0 + p1.err() * w1) +
-                       (p2.err() * w2 + (p3.err() * w3 + det2.err() * w4));
-    // Stored so that p.err() = kC * perm + kAbs is the bound of (O14).
-    p.perm = (16 * kU * s1a + s2a) * (1.0 + 32 * kU) / kC;
   }
   if (p.v <= -p.err()) {
     st = kStageFilter;
@@ -416,6 +422,23 @@ Status overlap(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in, int &verd
   // --- Exact stage. ---
   st = kStageExact;
   return overlap_exact(r_in, q1_in, q2_in, verdict);
+}
+
+Status overlap_in_range(double const *rp, double const *q1p, double const *q2p,
+                        int &verdict) noexcept {
+  Vec3 const r = load_vec3(rp);
+  Sym3 const q1 = load_sym3(q1p), q2 = load_sym3(q2p);
+  if (r[0] == 0.0 && r[1] == 0.0 && r[2] == 0.0) {
+    verdict = 1;
+    return kOk;
+  }
+  int st;
+  int const v = filters(r, q1, q2, st);
+  if (v != kUndecided) {
+    verdict = v;
+    return kOk;
+  }
+  return overlap_exact(r, q1, q2, verdict);
 }
 
 }  // namespace pw85

@@ -34,6 +34,18 @@ enum OverlapStage : int {
 Status overlap(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &verdict,
                int *stage = nullptr) noexcept;
 
+// Safe range of the floating-point filters (docs/overlap.md, eq. (O9)):
+// inputs with max |Q_ij| in [kOverlapRangeLo, kOverlapRangeHi] and
+// |r_i| <= kOverlapRangeHi need no scaling.
+constexpr double kOverlapRangeLo = 0x1p-60;
+constexpr double kOverlapRangeHi = 0x1p60;
+
+// overlap() for inputs already known to be finite, positive definite in
+// floating point and in the safe range (the hot path of pw85_overlap; the C
+// layer screens the arguments in one pass). Same results as overlap().
+Status overlap_in_range(double const *r, double const *q1, double const *q2,
+                        int &verdict) noexcept;
+
 // The exact stage alone (no filter): same contract as overlap().
 Status overlap_exact(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                      int &verdict) noexcept;
