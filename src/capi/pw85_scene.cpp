@@ -85,6 +85,19 @@ inline int threads_of(int nthreads) noexcept {
 #endif
 }
 
+// pw85_overlap off its hot path: full argument check (L D L^T pivots instead
+// of a Cholesky factorisation, docs/overlap.md (O9)), then scaling if needed.
+// Kept out of line so that the screening pass compiles without spills.
+__attribute__((noinline)) int overlap_general(double const *r12, double const *q1,
+                                              double const *q2) noexcept {
+  int const status = pw85::capi::validate_pair_ldl(r12, q1, q2);
+  if (status != PW85_OK) return status;
+  int verdict = -1;
+  int const s = pw85::overlap(pw85::load_vec3(r12), pw85::load_sym3(q1),
+                              pw85::load_sym3(q2), verdict);
+  return s == PW85_OK ? verdict : s;
+}
+
 }  // namespace
 
 extern "C" {
@@ -99,14 +112,7 @@ int pw85_overlap(double const r12[PW85_DIM], double const q1[PW85_SYM],
     int const s = pw85::overlap_in_range(r12, q1, q2, verdict);
     return s == PW85_OK ? verdict : s;
   }
-  // L D L^T pivots instead of a Cholesky factorisation (docs/overlap.md,
-  // "Validation").
-  int const status = pw85::capi::validate_pair_ldl(r12, q1, q2);
-  if (status != PW85_OK) return status;
-  int verdict = -1;
-  int const s = pw85::overlap(pw85::load_vec3(r12), pw85::load_sym3(q1),
-                              pw85::load_sym3(q2), verdict);
-  return s == PW85_OK ? verdict : s;
+  return overlap_general(r12, q1, q2);
 }
 
 int pw85_contact(double const r12[PW85_DIM], double const q1[PW85_SYM],
