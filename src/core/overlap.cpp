@@ -246,33 +246,41 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
     st = kStageFilter;  // (O13): all coefficients positive, p > 0 on [0, 1]
     return 1;
   }
-  // --- Minimum of the quartic p (not certified: only chooses l), then
-  // p(l) <= -err certifies separation (O4), or a witness at l overlap (O6).
+  // --- Maximiser of f = l (1 - l) N / D (not certified: only chooses l),
+  // N = c0 s^2 + c1 s t + c2 t^2 = r^T adj Q(l) r, D = det Q(l) (eq. (O10)),
+  // by safeguarded Newton steps on phi = log f (concave on (0, 1): f is
+  // concave and positive). At every iterate p(l) <= -err certifies
+  // separation (O14); after the last one a witness at l may certify overlap
+  // (O6). (Minimising the quartic p itself is not the same: p = D (1 - f)
+  // is dominated by D and often has its minimum near l = 0 or 1, far from
+  // where f > 1.)
   double const P0 = det1[0], P1 = p1[0], P2 = p2[0], P3 = p3[0], P4 = det2[0];
-  // Power basis p(l) = a0 + a1 l + ... + a4 l^4.
-  double const k1 = -4.0 * P0 + P1, k2 = 6.0 * P0 - 3.0 * P1 + P2;
-  double const k3 = -4.0 * P0 + 3.0 * P1 - 2.0 * P2 + P3;
-  double const k4 = P0 - P1 + P2 - P3 + P4;
   double const Pc[5] = {P0, P1, P2, P3, P4};
   double const Ec[5] = {err(det1), err(p1), err(p2), err(p3), err(det2)};
+  // Power bases N = n0 + n1 l + n2 l^2, D = d0 + d1 l + d2 l^2 + d3 l^3.
+  double const n0 = c0[0], n1 = c1[0] - 2.0 * c0[0], n2 = (c0[0] - c1[0]) + c2[0];
+  double const d0 = det1[0], d1 = b1[0] - 3.0 * d0, d2 = (3.0 * d0 - 2.0 * b1[0]) + b2[0];
+  double const d3 = ((b1[0] - d0) - b2[0]) + det2[0];
   double l = to_grid(h1 / (h1 + h2));
   if (!(l > 0.0 && l < 1.0)) l = 0.5;
   double lo = 0.0, hi = 1.0;
   V2 p = p_bernstein(l, Pc, Ec);
-  // Every iterate is a candidate for (O14): a well-separated pair stops at
-  // the first l where p <= -bound, long before the minimum is found.
-  for (int it = 0; it < 6 && !(p[0] <= -err(p)); ++it) {
-    double const dp = k1 + l * (2.0 * k2 + l * (3.0 * k3 + l * (4.0 * k4)));
-    double const d2p = 2.0 * k2 + l * (6.0 * k3 + l * (12.0 * k4));
-    if (dp > 0.0)
-      hi = l;
-    else
+  for (int it = 0; it < 8 && !(p[0] <= -err(p)); ++it) {
+    double const nv = n0 + l * (n1 + l * n2), dn = n1 + 2.0 * n2 * l;
+    double const dv = d0 + l * (d1 + l * (d2 + l * d3));
+    double const dd = d1 + l * (2.0 * d2 + 3.0 * d3 * l), d2d = 2.0 * d2 + 6.0 * d3 * l;
+    double const il = 1.0 / l, im = 1.0 / (1.0 - l), a = dn / nv, b = dd / dv;
+    double const g1 = (il - im) + (a - b);
+    double const g2 = -(il * il + im * im) + (2.0 * n2 / nv - a * a) - (d2d / dv - b * b);
+    if (g1 > 0.0)
       lo = l;
-    double next = l - dp / d2p;
+    else
+      hi = l;
+    double next = l - g1 / g2;
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     next = to_grid(next);
     if (!(next > 0.0 && next < 1.0) || next == l) break;
-    bool const done = std::fabs(next - l) <= 0x1p-27;  // p(l) within ~u of min
+    bool const done = std::fabs(next - l) <= 0x1p-27 * l * (1.0 - l);
     l = next;
     p = p_bernstein(l, Pc, Ec);
     if (done) break;
@@ -280,6 +288,15 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
   if (p[0] <= -err(p)) {
     st = kStageFilter;
     return 0;
+  }
+  // The coefficients P_j carry bounds of the size of their terms; p formed
+  // from Q(l) directly (O4) has a bound relative to Q(l), often far tighter.
+  if (p[0] <= 0.0) {
+    V2 const pl = p_at(l, rr, b1q, b2q);
+    if (pl[0] <= -err(pl)) {
+      st = kStageFilter;
+      return 0;
+    }
   }
   if (p[0] > err(p)) {
     // x = (1 - l) Q1 adj(Q(l)) r / det Q(l): the point of E1 where the
