@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "overlap.hpp"
+#include "overlap_dd.hpp"
 
 namespace pw85 {
 
@@ -104,13 +105,18 @@ inline void mixed_adj(SymB const &a, SymB const &b, V2 m[kSym]) noexcept {
   m[5] = (ap[0] * bp[3] + bp[0] * ap[3]) - 2.0 * (ap[1] * bn[1]);
 }
 
-// g = det Q - y^T adj(Q) y > err: y strictly inside {y : y^T Q^{-1} y < 1}
-// (eq. (O6)); y bounded, |y_i| <= 2^60 required by the caller.
-inline bool inside(V2 det, V2 const m[kSym], V2 const y[kDim]) noexcept {
+// g = det Q - y^T adj(Q) y > 0 certified: y = x - c strictly inside
+// {y : y^T Q^{-1} y < 1} (eq. (O6)); yb[] is y bounded (lane 1 >= |y_i|),
+// |y_i| <= 2^60 required by the caller. When the double bound leaves the
+// sign open, the same expression in double-double decides (eq. (O15)).
+inline bool inside(V2 det, V2 const m[kSym], V2 const yb[kDim], Sym3 const &q,
+                   Vec3 const &x, Vec3 const &c) noexcept {
   V2 yy[kSym];
-  outer(y, yy);
+  outer(yb, yy);
   V2 const g = det - flip(quad(m, yy));
-  return g[0] > err(g);
+  if (g[0] > err(g)) return true;
+  if (!(g[0] > -err(g))) return false;  // certainly outside (or NaN)
+  return witness_g_dd(q, x, c) > kDDRel * g[1] + kAbs;
 }
 
 // p(l) = det Q(l) - l (1 - l) r^T adj Q(l) r at l on the grid 2^-52 Z, so
@@ -180,17 +186,29 @@ inline V2 p_bernstein(double l, double const P[5], double const E[5]) noexcept {
 }
 
 // Witness certificate (eq. (O6)): x strictly inside E1 and E2.
-inline bool witness_inside(Vec3 const &x, V2 const r[kDim], V2 det1, V2 const m1[kSym],
-                           V2 det2, V2 const m2[kSym]) noexcept {
+inline bool witness_inside(Vec3 const &x, Vec3 const &r, V2 const rb[kDim], Sym3 const &q1,
+                           Sym3 const &q2, V2 det1, V2 const m1[kSym], V2 det2,
+                           V2 const m2[kSym]) noexcept {
   // The error bound (O3) with kAbs needs |x_i| (and so |x_i - r_i|) in the
   // safe range (eq. (O9)); NaN fails the test too.
   if (!(std::fabs(x[0]) <= kRangeHi && std::fabs(x[1]) <= kRangeHi &&
         std::fabs(x[2]) <= kRangeHi))
     return false;
   V2 const xb[kDim] = {pos(x[0]), pos(x[1]), pos(x[2])};
-  if (!inside(det1, m1, xb)) return false;
-  V2 const y[kDim] = {xb[0] - flip(r[0]), xb[1] - flip(r[1]), xb[2] - flip(r[2])};
-  return inside(det2, m2, y);
+  Vec3 const zero{{0.0, 0.0, 0.0}};
+  if (!inside(det1, m1, xb, q1, x, zero)) return false;
+  V2 const y[kDim] = {xb[0] - flip(rb[0]), xb[1] - flip(rb[1]), xb[2] - flip(rb[2])};
+  return inside(det2, m2, y, q2, x, r);
+}
+
+// p(l) <= 0 certified (separation, eq. (O4)): in double, and in
+// double-double (eq. (O15)) when the double bound leaves the sign open.
+inline bool p_negative(double l, Vec3 const &r, V2 const rr[kSym], Sym3 const &q1,
+                       Sym3 const &q2, SymB const &b1q, SymB const &b2q) noexcept {
+  V2 const pl = p_at(l, rr, b1q, b2q);
+  if (pl[0] <= -err(pl)) return true;
+  if (!(pl[0] <= err(pl))) return false;  // certainly positive (or NaN)
+  return p_dd(l, r, q1, q2) <= -(kDDRel * pl[1] + kAbs);
 }
 
 // Decided verdict (0 or 1) or kUndecided.
@@ -290,15 +308,13 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
     return 0;
   }
   // The coefficients P_j carry bounds of the size of their terms; p formed
-  // from Q(l) directly (O4) has a bound relative to Q(l), often far tighter.
-  if (p[0] <= 0.0) {
-    V2 const pl = p_at(l, rr, b1q, b2q);
-    if (pl[0] <= -err(pl)) {
-      st = kStageFilter;
-      return 0;
-    }
+  // from Q(l) directly (O4) has a bound relative to Q(l), often far tighter,
+  // and double-double (O15) tighter still.
+  if (p[0] <= err(p) && p_negative(l, r, rr, q1, q2, b1q, b2q)) {
+    st = kStageFilter;
+    return 0;
   }
-  if (p[0] > err(p)) {
+  {
     // x = (1 - l) Q1 adj(Q(l)) r / det Q(l): the point of E1 where the
     // ellipsoids would touch if f(l) were mu^2 (pw85 documentation, ch. 3).
     double const nu = 1.0 - l;
@@ -310,7 +326,7 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
     Vec3 x = multiply(q1, s);
     double const w = nu / dq;
     for (int i = 0; i < kDim; ++i) x[i] *= w;
-    if (witness_inside(x, rb, det1, m1, det2, m2)) {
+    if (witness_inside(x, r, rb, q1, q2, det1, m1, det2, m2)) {
       st = kStageFilter;
       return 1;
     }
@@ -327,8 +343,7 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
     if (!newton_values(l, r, q1, q2, d, nv)) break;
     // Early separation: f(l) >= 1 at a grid point, certified by p(l) <= 0.
     if (nv.f >= 1.0) {
-      V2 const pl = p_at(l, rr, b1q, b2q);
-      if (pl[0] <= -err(pl)) {
+      if (p_negative(l, r, rr, q1, q2, b1q, b2q)) {
         st = kStageFilter;
         return 0;
       }
@@ -347,7 +362,7 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
       double const nu = 1.0 - l;
       Vec3 x = multiply(q1, nv.s);
       for (int i = 0; i < kDim; ++i) x[i] *= nu;
-      if (est < 1.0 && witness_inside(x, rb, det1, m1, det2, m2)) {
+      if (est < 1.0 && witness_inside(x, r, rb, q1, q2, det1, m1, det2, m2)) {
         st = kStageFilter;
         return 1;
       }
