@@ -85,6 +85,40 @@ inline int threads_of(int nthreads) noexcept {
 #endif
 }
 
+// The loop shared by the three batch functions: pair k of m (OpenMP, dynamic
+// chunks of `chunk` pairs; out is the caller's output array, checked
+// non-null), one(k, r12, i, j) computes and writes its
+// results and returns its status (r12 == nullptr: index out of range). The
+// returned status is that of the first failing pair, recomputed after the
+// loop (the same deterministic call, so its outputs are rewritten unchanged)
+// so that it does not depend on the thread count.
+template <class One>
+int batch(long long n, double const *centres, double const *q, long long m,
+          long long const *pairs, void const *out, int *status, int nthreads, int chunk,
+          One one) noexcept {
+  if (m == 0) return PW85_OK;
+  if (n < 0 || m < 0 || centres == nullptr || q == nullptr || pairs == nullptr ||
+      out == nullptr || nthreads < 0)
+    return PW85_ERR_INVALID_ARGUMENT;
+  long long first_bad = m;
+#pragma omp parallel for schedule(dynamic, chunk) num_threads(threads_of(nthreads)) \
+    reduction(min : first_bad)
+  for (long long k = 0; k < m; ++k) {
+    prefetch_pair(n, centres, q, pairs, m, k);
+    double r12[3];
+    long long i, j;
+    bool const ok = pair_r12(n, centres, pairs, k, r12, i, j);
+    int const res = one(k, ok ? r12 : nullptr, i, j);
+    if (status != nullptr) status[k] = res;
+    if (res != PW85_OK && k < first_bad) first_bad = k;
+  }
+  if (first_bad == m) return PW85_OK;
+  double r12[3];
+  long long i, j;
+  bool const ok = pair_r12(n, centres, pairs, first_bad, r12, i, j);
+  return one(first_bad, ok ? r12 : nullptr, i, j);
+}
+
 // pw85_overlap off its hot path: full argument check (L D L^T pivots instead
 // of a Cholesky factorisation, docs/overlap.md (O9)), then scaling if needed.
 // Kept out of line so that the screening pass compiles without spills.
@@ -148,95 +182,34 @@ int pw85_contact(double const r12[PW85_DIM], double const q1[PW85_SYM],
 
 int pw85_overlap_batch(long long n, double const *centres, double const *q, long long m,
                        long long const *pairs, int *overlap, int *status, int nthreads) {
-  if (m == 0) return PW85_OK;
-  if (n < 0 || m < 0 || centres == nullptr || q == nullptr || pairs == nullptr || overlap == nullptr ||
-      nthreads < 0)
-    return PW85_ERR_INVALID_ARGUMENT;
-  long long const mm = m;
-  long long first_bad = mm;
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads_of(nthreads)) \
-    reduction(min : first_bad)
-  for (long long k = 0; k < mm; ++k) {
-    prefetch_pair(n, centres, q, pairs, mm, k);
-    double r12[3];
-    long long i, j;
-    int res;
-    if (!pair_r12(n, centres, pairs, k, r12, i, j))
-      res = PW85_ERR_INVALID_ARGUMENT;
-    else
-      res = pw85_overlap(r12, q + 6 * i, q + 6 * j);
-    overlap[k] = res;
-    if (status != nullptr) status[k] = res < 0 ? res : PW85_OK;
-    if (res < 0 && k < first_bad) first_bad = k;
-  }
-  return first_bad == mm ? PW85_OK : overlap[first_bad];
+  return batch(n, centres, q, m, pairs, overlap, status, nthreads, 256,
+               [&](long long k, double const *r12, long long i, long long j) noexcept {
+                 int const res = r12 ? pw85_overlap(r12, q + 6 * i, q + 6 * j)
+                                     : PW85_ERR_INVALID_ARGUMENT;
+                 overlap[k] = res;
+                 return res < 0 ? res : PW85_OK;
+               });
 }
 
 int pw85_contact_function_batch(long long n, double const *centres, double const *q,
                                 long long m, long long const *pairs, double *out, int *status,
                                 int nthreads) {
-  if (m == 0) return PW85_OK;
-  if (n < 0 || m < 0 || centres == nullptr || q == nullptr || pairs == nullptr || out == nullptr ||
-      nthreads < 0)
-    return PW85_ERR_INVALID_ARGUMENT;
-  long long const mm = m;
-  long long first_bad = mm;
-#pragma omp parallel for schedule(dynamic, 64) num_threads(threads_of(nthreads)) \
-    reduction(min : first_bad)
-  for (long long k = 0; k < mm; ++k) {
-    prefetch_pair(n, centres, q, pairs, mm, k);
-    double r12[3];
-    long long i, j;
-    int res;
-    if (!pair_r12(n, centres, pairs, k, r12, i, j)) {
-      res = PW85_ERR_INVALID_ARGUMENT;
-      fill_nan(out + 2 * k, 2);
-    } else {
-      res = pw85_contact_function(r12, q + 6 * i, q + 6 * j, out + 2 * k);
-    }
-    if (status != nullptr) status[k] = res;
-    if (res != PW85_OK && k < first_bad) first_bad = k;
-  }
-  if (first_bad == mm) return PW85_OK;
-  // Recompute the status of the first failing pair (deterministic, cheap).
-  double r12[3], tmp[2];
-  long long i, j;
-  if (!pair_r12(n, centres, pairs, first_bad, r12, i, j))
-    return PW85_ERR_INVALID_ARGUMENT;
-  return pw85_contact_function(r12, q + 6 * i, q + 6 * j, tmp);
+  return batch(n, centres, q, m, pairs, out, status, nthreads, 64,
+               [&](long long k, double const *r12, long long i, long long j) noexcept {
+                 if (r12) return pw85_contact_function(r12, q + 6 * i, q + 6 * j, out + 2 * k);
+                 fill_nan(out + 2 * k, 2);
+                 return int{PW85_ERR_INVALID_ARGUMENT};
+               });
 }
 
 int pw85_contact_batch(long long n, double const *centres, double const *q, long long m,
                        long long const *pairs, pw85_contact_t *c, int *status, int nthreads) {
-  if (m == 0) return PW85_OK;
-  if (n < 0 || m < 0 || centres == nullptr || q == nullptr || pairs == nullptr || c == nullptr ||
-      nthreads < 0)
-    return PW85_ERR_INVALID_ARGUMENT;
-  long long const mm = m;
-  long long first_bad = mm;
-#pragma omp parallel for schedule(dynamic, 64) num_threads(threads_of(nthreads)) \
-    reduction(min : first_bad)
-  for (long long k = 0; k < mm; ++k) {
-    prefetch_pair(n, centres, q, pairs, mm, k);
-    double r12[3];
-    long long i, j;
-    int res;
-    if (!pair_r12(n, centres, pairs, k, r12, i, j)) {
-      res = PW85_ERR_INVALID_ARGUMENT;
-      fill_nan_contact(c + k);
-    } else {
-      res = pw85_contact(r12, q + 6 * i, q + 6 * j, c + k);
-    }
-    if (status != nullptr) status[k] = res;
-    if (res != PW85_OK && k < first_bad) first_bad = k;
-  }
-  if (first_bad == mm) return PW85_OK;
-  double r12[3];
-  long long i, j;
-  pw85_contact_t tmp;
-  if (!pair_r12(n, centres, pairs, first_bad, r12, i, j))
-    return PW85_ERR_INVALID_ARGUMENT;
-  return pw85_contact(r12, q + 6 * i, q + 6 * j, &tmp);
+  return batch(n, centres, q, m, pairs, c, status, nthreads, 64,
+               [&](long long k, double const *r12, long long i, long long j) noexcept {
+                 if (r12) return pw85_contact(r12, q + 6 * i, q + 6 * j, c + k);
+                 fill_nan_contact(c + k);
+                 return int{PW85_ERR_INVALID_ARGUMENT};
+               });
 }
 
 }  // extern "C"
