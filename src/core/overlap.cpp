@@ -201,6 +201,34 @@ inline bool witness_inside(Vec3 const &x, Vec3 const &r, V2 const rb[kDim], Sym3
   return inside(det2, m2, y, q2, x, r);
 }
 
+// Witness certificate (eq. (O17)) at the point P = c + hi + lo given in
+// double-double, c = 0 (from_c2 false) or r: g_k > kDDRel P_k + kAbs for
+// both ellipsoids, P_k the bound expression of g_k (eq. (O15)) with the
+// offsets y bounded by |hi| + |lo| and |hi -+ r| (1 + 2^-50) + |lo|.
+inline bool witness_dd_inside(Vec3 const &hi, Vec3 const &lo, bool from_c2, Vec3 const &r,
+                              Sym3 const &q1, Sym3 const &q2, V2 det1, V2 const m1[kSym],
+                              V2 det2, V2 const m2[kSym]) noexcept {
+  if (!(std::fabs(hi[0]) <= kRangeHi && std::fabs(hi[1]) <= kRangeHi &&
+        std::fabs(hi[2]) <= kRangeHi))
+    return false;
+  V2 e[kDim], o[kDim];  // lane 1: bounds of the offsets from c and from the other centre
+  double const sgn = from_c2 ? 1.0 : -1.0;
+  for (int i = 0; i < kDim; ++i) {
+    e[i] = pos(hi[i]) + pos(lo[i]);
+    o[i] = pos(std::fabs(hi[i] + sgn * r[i]) * (1.0 + 0x1p-50) + std::fabs(lo[i]));
+  }
+  V2 ee[kSym], oo[kSym];
+  outer(e, ee);
+  outer(o, oo);
+  V2 const *mc = from_c2 ? m2 : m1, *mo = from_c2 ? m1 : m2;
+  double const pc = (from_c2 ? det2 : det1)[1] + quad(mc, ee)[1];
+  double const po = (from_c2 ? det1 : det2)[1] + quad(mo, oo)[1];
+  double g[2];
+  witness_pair_dd(q1, q2, r, hi, lo, from_c2, g);
+  double const p1 = from_c2 ? po : pc, p2 = from_c2 ? pc : po;
+  return g[0] > kDDRel * p1 + kAbs && g[1] > kDDRel * p2 + kAbs;
+}
+
 // p(l) <= 0 certified (separation, eq. (O4)): in double, and in
 // double-double (eq. (O15)) when the double bound leaves the sign open.
 inline bool p_negative(double l, Vec3 const &r, V2 const rr[kSym], Sym3 const &q1,
@@ -332,13 +360,15 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
     }
   }
 
-  // --- Newton for lambda* with Cholesky, then one certificate. ---
+  // --- Newton for lambda* with Cholesky, then one certificate; from the
+  // l of the coefficient stage (usually close to lambda*). ---
   Sym3 const d = difference(q2, q1);
-  l = to_grid(h1 / (h1 + h2));
   if (!(l > 0.0 && l < 1.0)) l = 0.5;
   lo = 0.0;
   hi = 1.0;
   Newton nv;
+  // Last evaluated point, for the refined witness below.
+  double lw = -1.0, d2w = 0.0, estw = 2.0;
   for (int it = 0; it < 40; ++it) {
     if (!newton_values(l, r, q1, q2, d, nv)) break;
     // Early separation: f(l) >= 1 at a grid point, certified by p(l) <= 0.
@@ -358,6 +388,9 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
     double const step = std::fabs(next - l);
     // Early overlap: well below 1, witness at the current point (eq. (O6)).
     double const est = nv.f + 0.5 * nv.df * (nv.df / -nv.d2f);
+    lw = l;
+    d2w = nv.d2f;
+    estw = est;
     if (est < 0.95 || step <= 0x1p-52) {
       double const nu = 1.0 - l;
       Vec3 x = multiply(q1, nv.s);
@@ -370,6 +403,35 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
     }
     if (next == l || hi - lo <= 0x1p-52) break;
     l = next;
+  }
+  // --- Witness from a double-double solve (eq. (O17)): near contact
+  // (1 - mu^2 below about kappa(Q) u) the witness above fails: the double s,
+  // hence f'(l) and the balance of the two margins of x, carry an error of
+  // about kappa(Q) u, and rounding x to double moves it by u |x|, which can
+  // be large on the scale of the smaller ellipsoid. witness_point_dd gives
+  // the point as a double-double offset from the centre of the smaller
+  // ellipsoid and f'(l), both from s in double-double; a few Newton steps
+  // (slope: the double f'') balance the margins, the witness is tried at
+  // each point. ---
+  if (lw > 0.0 && lw < 1.0 && estw < 1.0 + 0x1p-20 && d2w < 0.0) {
+    l = lw;
+    for (int k = 0; k < 6; ++k) {
+      bool const from_c2 = l > 0.5;
+      Vec3 hi, lo;
+      double df;
+      if (!witness_point_dd(l, r, q1, q2, from_c2, hi, lo, df)) break;
+      double const next = l - df / d2w;
+      // The margins differ by about f'(l): no witness while the step is
+      // large (Newton on the double-double f' converges quadratically).
+      bool const near = std::fabs(next - l) <= 0x1p-30 * std::fmin(l, 1.0 - l);
+      if ((near || k == 5) &&
+          witness_dd_inside(hi, lo, from_c2, r, q1, q2, det1, m1, det2, m2)) {
+        st = kStageFilter;
+        return 1;
+      }
+      if (!(next > 0.0 && next < 1.0) || next == l) break;
+      l = next;
+    }
   }
   return kUndecided;
 }

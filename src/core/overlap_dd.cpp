@@ -5,7 +5,10 @@
 // 2^-53 relative to the size of their terms.
 #include "overlap_dd.hpp"
 
+#include <cmath>
+
 #include "dd.hpp"
+#include "f_dd.hpp"
 
 namespace pw85 {
 
@@ -49,16 +52,64 @@ inline DD det_adj(DD const q[kSym], DD m[kSym]) noexcept {
   return add(add(mul(q[0], m[0]), mul(q[1], m[1])), mul(q[2], m[2]));
 }
 
+// det q - y^T adj(q) y for a double-double offset y.
+inline double g_dd(Sym3 const &q, DD const y[kDim]) noexcept {
+  DD qd[kSym], m[kSym], yy[kSym];
+  for (int i = 0; i < kSym; ++i) qd[i] = DD{q[i], 0.0};
+  DD const det = det_adj(qd, m);
+  outer(y, yy);
+  return dd::to_double(sub(det, quad(m, yy)));
+}
+
 }  // namespace
 
 double witness_g_dd(Sym3 const &q, Vec3 const &x, Vec3 const &c) noexcept {
-  DD qd[kSym], m[kSym], y[kDim], yy[kSym];
-  for (int i = 0; i < kSym; ++i) qd[i] = DD{q[i], 0.0};
-  DD const det = det_adj(qd, m);
+  DD y[kDim];
   for (int i = 0; i < kDim; ++i) y[i] = dd::two_sum(x[i], -c[i]);
-  outer(y, yy);
-  DD const g = sub(det, quad(m, yy));
-  return dd::to_double(g);
+  return g_dd(q, y);
+}
+
+bool witness_point_dd(double l, Vec3 const &r, Sym3 const &q1, Sym3 const &q2, bool from_c2,
+                      Vec3 &hi, Vec3 &lo, double &df) noexcept {
+  DD s[kDim], phi;
+  if (!solve_dd_impl<kFma>(l, r, q1, q2, s, phi)) return false;
+  DD const om = dd::two_sum(1.0, -l);  // 1 - l, exactly
+  static constexpr int kRow[kDim][kDim] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+  DD sq1{0.0, 0.0}, sq2{0.0, 0.0};
+  bool finite = true;
+  for (int i = 0; i < kDim; ++i) {
+    DD t1{0.0, 0.0}, t2{0.0, 0.0};  // (Q1 s)_i, (Q2 s)_i
+    for (int j = 0; j < kDim; ++j) {
+      t1 = add(t1, mul(s[j], q1[kRow[i][j]]));
+      t2 = add(t2, mul(s[j], q2[kRow[i][j]]));
+    }
+    DD const y = from_c2 ? mul(t2, -l) : mul(t1, om);
+    hi[i] = y.hi;
+    lo[i] = y.lo;
+    finite = finite && std::isfinite(y.hi) && std::isfinite(y.lo);
+    sq1 = add(sq1, mul(s[i], t1));
+    sq2 = add(sq2, mul(s[i], t2));
+  }
+  df = dd::to_double(sub(mul(mul(sq1, om), om), mul(mul(sq2, l), l)));
+  return finite && std::isfinite(df);
+}
+
+void witness_pair_dd(Sym3 const &q1, Sym3 const &q2, Vec3 const &r, Vec3 const &hi,
+                     Vec3 const &lo, bool from_c2, double g[2]) noexcept {
+  DD y1[kDim], y2[kDim];  // offsets from the centres of E1 (0) and E2 (r)
+  for (int i = 0; i < kDim; ++i) {
+    DD const e = dd::two_sum(hi[i], lo[i]);  // exact
+    DD const rr{r[i], 0.0};
+    if (from_c2) {
+      y2[i] = e;
+      y1[i] = add(e, rr);
+    } else {
+      y1[i] = e;
+      y2[i] = sub(e, rr);
+    }
+  }
+  g[0] = g_dd(q1, y1);
+  g[1] = g_dd(q2, y2);
 }
 
 double p_dd(double l, Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
