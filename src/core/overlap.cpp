@@ -411,8 +411,8 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
   // be large on the scale of the smaller ellipsoid. witness_point_dd gives
   // the point as a double-double offset from the centre of the smaller
   // ellipsoid and f'(l), both from s in double-double; a few Newton steps
-  // (slope: the double f'') balance the margins, the witness is tried at
-  // each point. ---
+  // (slope: the double f'') balance the margins, and the witness is tried
+  // once the step is small. ---
   if (lw > 0.0 && lw < 1.0 && estw < 1.0 + 0x1p-20 && d2w < 0.0) {
     l = lw;
     for (int k = 0; k < 6; ++k) {
