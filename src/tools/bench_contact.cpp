@@ -38,6 +38,7 @@
 #include <sys/utsname.h>
 #include <time.h>
 
+#include "bench_common.hpp"
 #include "pw85.h"
 
 #ifndef PW85_BENCH_FLAGS
@@ -87,20 +88,7 @@ MethodEntry const methods[] = {
 };
 
 // ---- scenes ---------------------------------------------------------------
-struct Rng {  // splitmix64
-  uint64_t s;
-  uint64_t next() {
-    uint64_t z = (s += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return (next() >> 11) * 0x1p-53; }
-  double normal() {
-    double const u1 = uniform() + 0x1p-60, u2 = uniform();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
-  }
-};
+using bench::Rng;
 
 struct Pair {
   double r[3], q1[6], q2[6];
@@ -109,23 +97,10 @@ struct Pair {
 };
 
 void random_ellipsoid(Rng &g, double lo, double hi, double q[6], double &amax) {
-  double a[3];
-  for (double &x : a) x = std::exp(std::log(lo) + (std::log(hi) - std::log(lo)) * g.uniform());
+  double a[3], rot[3][3];
+  bench::random_axes(g, lo, hi, a, rot);
   amax = std::max({a[0], a[1], a[2]});
-  double w = g.normal(), x = g.normal(), y = g.normal(), z = g.normal();
-  double const n = std::sqrt(w * w + x * x + y * y + z * z);
-  w /= n, x /= n, y /= n, z /= n;
-  double const rot[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
-                            {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
-                            {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
-  // Q = sum_k a_k^2 v_k v_k^T, v_k = column k of rot.
-  int idx = 0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j) {
-      double s = 0.0;
-      for (int k = 0; k < 3; ++k) s += a[k] * a[k] * rot[i][k] * rot[j][k];
-      q[idx++] = s;
-    }
+  bench::q_from_axes(a, rot, q);
 }
 
 // ---- reference in __float128 ----------------------------------------------
@@ -205,35 +180,8 @@ __float128 reference_mu2(Pair const &p) {
   return e.f;
 }
 
-std::string run_command(char const *cmd) {
-  std::string out;
-  FILE *f = popen(cmd, "r");
-  if (!f) return "unknown";
-  char buf[512];
-  while (fgets(buf, sizeof buf, f)) out += buf;
-  pclose(f);
-  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-  return out;
-}
-
-std::string cpu_model() {
-  FILE *f = std::fopen("/proc/cpuinfo", "r");
-  if (!f) return "unknown";
-  char line[512];
-  std::string m = "unknown";
-  while (std::fgets(line, sizeof line, f)) {
-    if (std::strncmp(line, "model name", 10) == 0) {
-      char const *c = std::strchr(line, ':');
-      if (c) {
-        m = c + 2;
-        while (!m.empty() && m.back() == '\n') m.pop_back();
-      }
-      break;
-    }
-  }
-  std::fclose(f);
-  return m;
-}
+using bench::cpu_model;
+using bench::run_command;
 
 double quantile(std::vector<double> v, double q) {
   if (v.empty()) return NAN;

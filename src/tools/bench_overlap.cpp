@@ -66,6 +66,7 @@
 #include <fcl/fcl.h>
 #endif
 
+#include "bench_common.hpp"
 #include "pw85.h"
 
 #ifndef PW85_BENCH_FLAGS
@@ -77,20 +78,7 @@
 
 namespace {
 
-struct Rng {  // splitmix64
-  uint64_t s;
-  uint64_t next() {
-    uint64_t z = (s += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return (double)(next() >> 11) * 0x1p-53; }
-  double normal() {
-    double const u1 = uniform() + 0x1p-60, u2 = uniform();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
-  }
-};
+using bench::Rng;
 
 // One ellipsoid in both representations: q (upper triangle of Q) and
 // radii a[k] along the columns k of rot.
@@ -106,25 +94,10 @@ struct Pair {
   int ref;  // reference verdict: 1 overlap, 0 not, -1 unknown (not counted)
 };
 
-void q_from_axes(Ell &e) {
-  int idx = 0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j) {
-      double s = 0.0;
-      for (int k = 0; k < 3; ++k) s += e.a[k] * e.a[k] * e.rot[i][k] * e.rot[j][k];
-      e.q[idx++] = s;
-    }
-}
+void q_from_axes(Ell &e) { bench::q_from_axes(e.a, e.rot, e.q); }
 
 double random_ellipsoid(Rng &g, double lo, double hi, Ell &e) {
-  for (double &x : e.a) x = std::exp(std::log(lo) + (std::log(hi) - std::log(lo)) * g.uniform());
-  double w = g.normal(), x = g.normal(), y = g.normal(), z = g.normal();
-  double const n = std::sqrt(w * w + x * x + y * y + z * z);
-  w /= n, x /= n, y /= n, z /= n;
-  double const rot[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
-                            {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
-                            {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
-  std::memcpy(e.rot, rot, sizeof rot);
+  bench::random_axes(g, lo, hi, e.a, e.rot);
   q_from_axes(e);
   return std::max({e.a[0], e.a[1], e.a[2]});
 }
@@ -147,35 +120,8 @@ void axes_from_q(Ell &) {}
 #endif
 
 // ---- machine description ---------------------------------------------------
-std::string run_command(char const *cmd) {
-  std::string out;
-  FILE *f = popen(cmd, "r");
-  if (!f) return "unknown";
-  char buf[512];
-  while (fgets(buf, sizeof buf, f)) out += buf;
-  pclose(f);
-  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-  return out;
-}
-
-std::string cpu_model() {
-  FILE *f = std::fopen("/proc/cpuinfo", "r");
-  if (!f) return "unknown";
-  char line[512];
-  std::string m = "unknown";
-  while (std::fgets(line, sizeof line, f)) {
-    if (std::strncmp(line, "model name", 10) == 0) {
-      char const *c = std::strchr(line, ':');
-      if (c) {
-        m = c + 2;
-        while (!m.empty() && m.back() == '\n') m.pop_back();
-      }
-      break;
-    }
-  }
-  std::fclose(f);
-  return m;
-}
+using bench::cpu_model;
+using bench::run_command;
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
