@@ -171,29 +171,44 @@ PW85_ALWAYS_INLINE Vec3 residual_dd_impl(double lambda, Vec3 const &r, Sym3 cons
   return rho;
 }
 
-// From s = Q(lambda)^{-1} r given as double-doubles: x0 = (1 - lambda) Q1 s
-// and Q2 s rounded to double, and f'(lambda) = (1 - lambda)^2 s^T Q1 s -
-// lambda^2 s^T Q2 s (docs/contact_geometry.md, eqs. (G1), (G9)) in
-// double-double, rounded at the end.
+// From s = Q(lambda)^{-1} r given as double-doubles: Q1 s and Q2 s (t1, t2)
+// and f'(lambda) = (1 - lambda)^2 s^T Q1 s - lambda^2 s^T Q2 s
+// (docs/contact_geometry.md, eqs. (G1), (G9)), all in double-double.
 template <bool F>
-PW85_ALWAYS_INLINE double point_from_s_impl(double lambda, Sym3 const &q1, Sym3 const &q2,
-                                            dd::DD const s[kDim], Vec3 &x0, Vec3 &q2s) noexcept {
+PW85_ALWAYS_INLINE dd::DD products_from_s_impl(double lambda, Sym3 const &q1, Sym3 const &q2,
+                                               dd::DD const s[kDim], dd::DD t1[kDim],
+                                               dd::DD t2[kDim]) noexcept {
   using namespace dd;
   DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
   static constexpr int kIdx[kDim][kDim] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
   DD sq1{0.0, 0.0}, sq2{0.0, 0.0};
   for (int i = 0; i < kDim; ++i) {
-    DD t1{0.0, 0.0}, t2{0.0, 0.0};  // (Q1 s)_i, (Q2 s)_i
+    t1[i] = DD{0.0, 0.0};
+    t2[i] = DD{0.0, 0.0};
     for (int j = 0; j < kDim; ++j) {
-      t1 = add(t1, mul<F>(s[j], q1[kIdx[i][j]]));
-      t2 = add(t2, mul<F>(s[j], q2[kIdx[i][j]]));
+      t1[i] = add(t1[i], mul<F>(s[j], q1[kIdx[i][j]]));
+      t2[i] = add(t2[i], mul<F>(s[j], q2[kIdx[i][j]]));
     }
-    x0[i] = to_double(mul<F>(t1, om));
-    q2s[i] = to_double(t2);
-    sq1 = add(sq1, mul<F>(s[i], t1));
-    sq2 = add(sq2, mul<F>(s[i], t2));
+    sq1 = add(sq1, mul<F>(s[i], t1[i]));
+    sq2 = add(sq2, mul<F>(s[i], t2[i]));
   }
-  return to_double(sub(mul<F>(mul<F>(sq1, om), om), mul<F>(mul<F>(sq2, lambda), lambda)));
+  return sub(mul<F>(mul<F>(sq1, om), om), mul<F>(mul<F>(sq2, lambda), lambda));
+}
+
+// The same with x0 = (1 - lambda) Q1 s and Q2 s rounded to double; returns
+// f'(lambda) rounded to double.
+template <bool F>
+PW85_ALWAYS_INLINE double point_from_s_impl(double lambda, Sym3 const &q1, Sym3 const &q2,
+                                            dd::DD const s[kDim], Vec3 &x0, Vec3 &q2s) noexcept {
+  using namespace dd;
+  DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
+  DD t1[kDim], t2[kDim];
+  DD const df = products_from_s_impl<F>(lambda, q1, q2, s, t1, t2);
+  for (int i = 0; i < kDim; ++i) {
+    x0[i] = to_double(mul<F>(t1[i], om));
+    q2s[i] = to_double(t2[i]);
+  }
+  return to_double(df);
 }
 
 // Contact point, normal and f' at lambda in double-double

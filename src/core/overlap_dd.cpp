@@ -73,25 +73,17 @@ bool witness_point_dd(double l, Vec3 const &r, Sym3 const &q1, Sym3 const &q2, b
                       Vec3 &hi, Vec3 &lo, double &df) noexcept {
   DD s[kDim], phi;
   if (!solve_dd_impl<kFma>(l, r, q1, q2, s, phi)) return false;
+  DD t1[kDim], t2[kDim];  // Q1 s, Q2 s
+  df = dd::to_double(products_from_s_impl<kFma>(l, q1, q2, s, t1, t2));
   DD const om = dd::two_sum(1.0, -l);  // 1 - l, exactly
-  static constexpr int kRow[kDim][kDim] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
-  DD sq1{0.0, 0.0}, sq2{0.0, 0.0};
-  bool finite = true;
+  bool finite = std::isfinite(df);
   for (int i = 0; i < kDim; ++i) {
-    DD t1{0.0, 0.0}, t2{0.0, 0.0};  // (Q1 s)_i, (Q2 s)_i
-    for (int j = 0; j < kDim; ++j) {
-      t1 = add(t1, mul(s[j], q1[kRow[i][j]]));
-      t2 = add(t2, mul(s[j], q2[kRow[i][j]]));
-    }
-    DD const y = from_c2 ? mul(t2, -l) : mul(t1, om);
+    DD const y = from_c2 ? mul(t2[i], -l) : mul(t1[i], om);
     hi[i] = y.hi;
     lo[i] = y.lo;
     finite = finite && std::isfinite(y.hi) && std::isfinite(y.lo);
-    sq1 = add(sq1, mul(s[i], t1));
-    sq2 = add(sq2, mul(s[i], t2));
   }
-  df = dd::to_double(sub(mul(mul(sq1, om), om), mul(mul(sq2, l), l)));
-  return finite && std::isfinite(df);
+  return finite;
 }
 
 void witness_pair_dd(Sym3 const &q1, Sym3 const &q2, Vec3 const &r, Vec3 const &hi,
