@@ -6,12 +6,6 @@
 
 namespace pw85 {
 
-#if defined(__FMA__)
-#define PW85_DD_STATIC_FMA 1
-#elif (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
-#define PW85_DD_DISPATCH 1
-#endif
-
 namespace {
 #ifdef PW85_DD_DISPATCH
 __attribute__((target("fma"))) bool f_eval_dd_fma(double lambda, Vec3 const &r,
@@ -41,7 +35,7 @@ __attribute__((target("fma"))) double refined_point_dd_fma(double lambda, Sym3 c
                                                          Vec3 &q2s) noexcept {
   return refined_point_impl<true>(lambda, q1, q2, s, delta, x0, q2s);
 }
-inline bool cpu_has_fma() noexcept { return __builtin_cpu_supports("fma"); }
+using dd::cpu_has_fma;
 #endif
 }  // namespace
 

@@ -127,9 +127,8 @@ PW85_ALWAYS_INLINE double p_impl(double l, Vec3 const &r, Sym3 const &q1,
   return dd::to_double(p);
 }
 
-// FMA variants for the run-time choice (as in dd_kernels.cpp).
-#if !defined(__FMA__) && (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
-#define PW85_OVL_DISPATCH 1
+// FMA variants for the run-time choice (dd.hpp).
+#ifdef PW85_DD_DISPATCH
 __attribute__((target("fma"))) double witness_g_fma(Sym3 const &q, Vec3 const &x,
                                                     Vec3 const &c) noexcept {
   return witness_g_impl<true>(q, x, c);
@@ -149,12 +148,11 @@ __attribute__((target("fma"))) double p_fma(double l, Vec3 const &r, Sym3 const 
                                             Sym3 const &q2) noexcept {
   return p_impl<true>(l, r, q1, q2);
 }
-inline bool use_fma() noexcept { return __builtin_cpu_supports("fma"); }
+using dd::cpu_has_fma;
 #endif
 
-// Compiled with FMA: always the FMA variant; otherwise the plain one unless
-// dispatched above.
-#if defined(__FMA__)
+// The variant used when not dispatched: FMA when the whole build targets it.
+#ifdef PW85_DD_STATIC_FMA
 constexpr bool kF = true;
 #else
 constexpr bool kF = false;
@@ -163,24 +161,24 @@ constexpr bool kF = false;
 }  // namespace
 
 double witness_g_dd(Sym3 const &q, Vec3 const &x, Vec3 const &c) noexcept {
-#ifdef PW85_OVL_DISPATCH
-  if (use_fma()) return witness_g_fma(q, x, c);
+#ifdef PW85_DD_DISPATCH
+  if (cpu_has_fma()) return witness_g_fma(q, x, c);
 #endif
   return witness_g_impl<kF>(q, x, c);
 }
 
 bool witness_point_dd(double l, Vec3 const &r, Sym3 const &q1, Sym3 const &q2, bool from_c2,
                       Vec3 &hi, Vec3 &lo, double &df) noexcept {
-#ifdef PW85_OVL_DISPATCH
-  if (use_fma()) return witness_point_fma(l, r, q1, q2, from_c2, hi, lo, df);
+#ifdef PW85_DD_DISPATCH
+  if (cpu_has_fma()) return witness_point_fma(l, r, q1, q2, from_c2, hi, lo, df);
 #endif
   return witness_point_impl<kF>(l, r, q1, q2, from_c2, hi, lo, df);
 }
 
 void witness_pair_dd(Sym3 const &q1, Sym3 const &q2, Vec3 const &r, Vec3 const &hi,
                      Vec3 const &lo, bool from_c2, double g[2]) noexcept {
-#ifdef PW85_OVL_DISPATCH
-  if (use_fma()) {
+#ifdef PW85_DD_DISPATCH
+  if (cpu_has_fma()) {
     witness_pair_fma(q1, q2, r, hi, lo, from_c2, g);
     return;
   }
@@ -189,8 +187,8 @@ void witness_pair_dd(Sym3 const &q1, Sym3 const &q2, Vec3 const &r, Vec3 const &
 }
 
 double p_dd(double l, Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
-#ifdef PW85_OVL_DISPATCH
-  if (use_fma()) return p_fma(l, r, q1, q2);
+#ifdef PW85_DD_DISPATCH
+  if (cpu_has_fma()) return p_fma(l, r, q1, q2);
 #endif
   return p_impl<kF>(l, r, q1, q2);
 }
