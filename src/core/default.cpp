@@ -1,5 +1,5 @@
 // PW85_METHOD_DEFAULT (docs/methods.md, section "DEFAULT"):
-//  0. a safeguarded Halley iteration as NEWTON's (newton.cpp) but with f and
+//  0. from the fixed-point start (newton.cpp, eq. (M19)), a safeguarded Halley iteration as NEWTON's (newton.cpp) but with f and
 //     its derivatives from the adjugate of Q(lambda) (f_adj.hpp, eq. (M16)),
 //     then f at the final lambda by the stationary form (f_dd.hpp, eq. (M11))
 //     whose error is second order in the error of s, bounded componentwise
@@ -45,6 +45,7 @@ constexpr double kDDModelGap = 0x1p-40;
 constexpr double kDDSlopeRel = 0x1p-10;
 constexpr int kDDMaxNewton = 6;
 constexpr int kDDMaxBisect = 80;
+
 }  // namespace
 
 Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
@@ -52,7 +53,7 @@ Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   res.iterations = 0;
   Sym3 const d = difference(q2, q1);
   // Step 1: Halley iteration with adjugate evaluations (f_adj.hpp).
-  double const lambda0 = newton_start(r, q1, q2);
+  double const lambda0 = fixed_point_start(r, q1, q2);
   double start = lambda0;
   {
     double lo = 0.0, hi = 1.0, lambda = lambda0;

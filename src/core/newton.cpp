@@ -34,6 +34,59 @@ double newton_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
   return (l0 > 0.0 && l0 < 1.0) ? l0 : 0.5;
 }
 
+namespace {
+
+// a_i = n^T Q_i n, i = 1, 2, as short trees (the dependency chain is the cost).
+inline void support_squares(Vec3 const &n, Sym3 const &q1, Sym3 const &q2, double &a1,
+                            double &a2) noexcept {
+  double const n00 = n[0] * n[0], n11 = n[1] * n[1], n22 = n[2] * n[2];
+  double const n01 = 2.0 * n[0] * n[1], n02 = 2.0 * n[0] * n[2], n12 = 2.0 * n[1] * n[2];
+  a1 = (q1[0] * n00 + q1[3] * n11) + (q1[5] * n22 + q1[1] * n01) + (q1[2] * n02 + q1[4] * n12);
+  a2 = (q2[0] * n00 + q2[3] * n11) + (q2[5] * n22 + q2[1] * n01) + (q2[2] * n02 + q2[4] * n12);
+}
+
+// adj(q) r.
+inline Vec3 adj_times(Sym3 const &q, Vec3 const &r) noexcept {
+  Sym3 const c = adjugate3(q);
+  return Vec3{{c[0] * r[0] + (c[1] * r[1] + c[2] * r[2]),
+               c[1] * r[0] + (c[3] * r[1] + c[4] * r[2]),
+               c[2] * r[0] + (c[4] * r[1] + c[5] * r[2])}};
+}
+
+}  // namespace
+
+// Eq. (M19). At the maximiser, n = Q(lambda*)^{-1} r is the common normal and
+// lambda* = h1(n) / (h1(n) + h2(n)), h_i(n) = (n^T Q_i n)^(1/2); iterating
+// that map from lambda = 1/2 approaches lambda* fast while far from it (it is
+// exact for spheres). n is needed only up to a factor: with x = h1 / h2 =
+// lambda / (1 - lambda),
+//   adj(Q(lambda)) r ~ adj(Q1) r + x M r + x^2 adj(Q2) r,
+// M the mixed adjugate (eq. (M13)), M r = adj(Q1 + Q2) r - adj(Q1) r -
+// adj(Q2) r. The three vectors do not depend on lambda and are formed in
+// parallel at the start; each later step costs two quadratic forms, two
+// square roots and a division on the dependency chain.
+double fixed_point_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
+  constexpr int kSteps = 3;
+  Sym3 q12;
+  for (int i = 0; i < kSym; ++i) q12[i] = q1[i] + q2[i];
+  Vec3 const n12 = adj_times(q12, r), n1 = adj_times(q1, r), n2 = adj_times(q2, r);
+  Vec3 mr;
+  for (int i = 0; i < kDim; ++i) mr[i] = n12[i] - (n1[i] + n2[i]);
+  double a1, a2;
+  support_squares(n12, q1, q2, a1, a2);  // step 1: lambda = 1/2, n = adj(Q1 + Q2) r
+  double h1 = std::sqrt(a1), h2 = std::sqrt(a2);
+  for (int k = 1; k < kSteps; ++k) {
+    double const x = h1 / h2;
+    Vec3 n;
+    for (int i = 0; i < kDim; ++i) n[i] = n1[i] + x * (mr[i] + x * n2[i]);
+    support_squares(n, q1, q2, a1, a2);
+    h1 = std::sqrt(a1);
+    h2 = std::sqrt(a2);
+  }
+  double const l = h1 / (h1 + h2);
+  return l > 0.0 && l < 1.0 ? l : newton_start(r, q1, q2);  // NaN, 0 or 1: (M7)
+}
+
 bool newton_iterate(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Sym3 const &d,
                     double lambda, NewtonState &st, int &iterations) noexcept {
   double lo = 0.0, hi = 1.0;
@@ -143,7 +196,7 @@ Status contact_newton(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   Sym3 const d = difference(q2, q1);
   NewtonState st;
   st.e.f = std::nan("");
-  bool const ok = newton_iterate(r, q1, q2, d, newton_start(r, q1, q2), st, res.iterations);
+  bool const ok = newton_iterate(r, q1, q2, d, fixed_point_start(r, q1, q2), st, res.iterations);
   if (!ok && !std::isfinite(st.e.f)) {
     res.mu2 = std::nan("");
     res.lambda = std::nan("");

@@ -10,6 +10,11 @@ namespace pw85 {
 // (docs/methods.md, eq. (M7)).
 double newton_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept;
 
+// Starting point of DEFAULT: three steps of the fixed point
+// lambda = h1(n) / (h1(n) + h2(n)), n = Q(lambda)^{-1} r, from lambda = 1/2
+// (docs/methods.md, eq. (M19)); (M7) when that fails.
+double fixed_point_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept;
+
 struct NewtonState {
   FEval e;        // last successful evaluation (e.f untouched if none)
   double mu2;     // estimate of max f (Taylor-extrapolated from e when step != 0)

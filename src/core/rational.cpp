@@ -185,7 +185,7 @@ Status contact_rational(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   RationalCoefs c;
   rational_coefficients(r, q1, q2, c);
   RationalMax m;
-  rational_maximise(c, newton_start(r, q1, q2), m);
+  rational_maximise(c, fixed_point_start(r, q1, q2), m);
   res.iterations = m.iterations;
   double const lambda = m.lambda, f = m.f;
   res.mu2 = f;
