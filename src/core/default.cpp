@@ -1,6 +1,7 @@
 // PW85_METHOD_DEFAULT (docs/methods.md, section "DEFAULT"):
-//  0. from the fixed-point start (newton.cpp, eq. (M19)), a safeguarded Halley iteration as NEWTON's (newton.cpp) but with f and
-//     its derivatives from the adjugate of Q(lambda) (f_adj.hpp, eq. (M16)),
+//  0. from the fixed-point start (newton.cpp, eq. (M19)), a safeguarded
+//     Halley iteration as NEWTON's (newton.cpp) but with f and its
+//     derivatives from the adjugate of Q(lambda) (f_adj.hpp, eq. (M16)),
 //     then f at the final lambda by the stationary form (f_dd.hpp, eq. (M11))
 //     whose error is second order in the error of s, bounded componentwise
 //     (eq. (M17)); if the total estimate is below kFastRel * mu2 (most pairs)
@@ -45,7 +46,6 @@ constexpr double kDDModelGap = 0x1p-40;
 constexpr double kDDSlopeRel = 0x1p-10;
 constexpr int kDDMaxNewton = 6;
 constexpr int kDDMaxBisect = 80;
-
 }  // namespace
 
 Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,

@@ -36,7 +36,11 @@ double newton_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
 
 namespace {
 
-// a_i = n^T Q_i n, i = 1, 2, as short trees (the dependency chain is the cost).
+// a_i = n^T Q_i n, i = 1, 2, and adj(q) r below: what dot(n, multiply(q, n))
+// and multiply(adjugate3(q), r) of sym3.hpp compute, summed as short trees
+// (the dependency chain is the cost of the start). The two orders give
+// starts that differ in the last bits, which moves some results by an ulp
+// (tests/test-contact.c's point bounds, set at the measured maxima, notice).
 inline void support_squares(Vec3 const &n, Sym3 const &q1, Sym3 const &q2, double &a1,
                             double &a2) noexcept {
   double const n00 = n[0] * n[0], n11 = n[1] * n[1], n22 = n[2] * n[2];
@@ -45,7 +49,6 @@ inline void support_squares(Vec3 const &n, Sym3 const &q1, Sym3 const &q2, doubl
   a2 = (q2[0] * n00 + q2[3] * n11) + (q2[5] * n22 + q2[1] * n01) + (q2[2] * n02 + q2[4] * n12);
 }
 
-// adj(q) r.
 inline Vec3 adj_times(Sym3 const &q, Vec3 const &r) noexcept {
   Sym3 const c = adjugate3(q);
   return Vec3{{c[0] * r[0] + (c[1] * r[1] + c[2] * r[2]),
