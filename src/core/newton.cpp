@@ -66,8 +66,11 @@ inline Vec3 adj_times(Sym3 const &q, Vec3 const &r) noexcept {
 //   adj(Q(lambda)) r ~ adj(Q1) r + x M r + x^2 adj(Q2) r,
 // M the mixed adjugate (eq. (M13)), M r = adj(Q1 + Q2) r - adj(Q1) r -
 // adj(Q2) r. The three vectors do not depend on lambda and are formed in
-// parallel at the start; each later step costs two quadratic forms, two
-// square roots and a division on the dependency chain.
+// parallel at the start. Multiplied by h2^2 / (a1 + a2), a_i = h_i^2, the
+// next n is (a2 n1 + sqrt(a1 a2) M r + a1 n2) / (a1 + a2): one square root
+// on the dependency chain of a step and no division there (the reciprocal
+// of a1 + a2 is formed while the square root runs; the factor keeps n from
+// over- or underflowing over the steps).
 double fixed_point_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
   constexpr int kSteps = 3;
   Sym3 q12;
@@ -77,15 +80,14 @@ double fixed_point_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept
   for (int i = 0; i < kDim; ++i) mr[i] = n12[i] - (n1[i] + n2[i]);
   double a1, a2;
   support_squares(n12, q1, q2, a1, a2);  // step 1: lambda = 1/2, n = adj(Q1 + Q2) r
-  double h1 = std::sqrt(a1), h2 = std::sqrt(a2);
   for (int k = 1; k < kSteps; ++k) {
-    double const x = h1 / h2;
+    double const g = std::sqrt(a1 * a2), scale = 1.0 / (a1 + a2);
+    double const c1 = a2 * scale, cm = g * scale, c2 = a1 * scale;
     Vec3 n;
-    for (int i = 0; i < kDim; ++i) n[i] = n1[i] + x * (mr[i] + x * n2[i]);
+    for (int i = 0; i < kDim; ++i) n[i] = c1 * n1[i] + (cm * mr[i] + c2 * n2[i]);
     support_squares(n, q1, q2, a1, a2);
-    h1 = std::sqrt(a1);
-    h2 = std::sqrt(a2);
   }
+  double const h1 = std::sqrt(a1), h2 = std::sqrt(a2);
   double const l = h1 / (h1 + h2);
   return l > 0.0 && l < 1.0 ? l : newton_start(r, q1, q2);  // NaN, 0 or 1: (M7)
 }
