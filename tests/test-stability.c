@@ -456,6 +456,48 @@ static void test_errors(void) {
                   PW85_ERR_INVALID_ARGUMENT);
   g_assert_cmpint(pw85_contact_function_method(r, q, q, PW85_METHOD_DEFAULT, NULL), ==,
                   PW85_ERR_INVALID_ARGUMENT);
+  /* The one-pass screen of the C layer (src/capi/validate.hpp) must send
+     every one of these to the general checks. */
+  r[1] = INFINITY;
+  g_assert_cmpint(pw85_contact_function_method(r, q, q, PW85_METHOD_DEFAULT, &res), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+  g_assert_true(isnan(res.mu2));
+  r[1] = 0.0;
+  double qnan[6] = {1, 0, 0, 1, NAN, 1};
+  g_assert_cmpint(pw85_contact_function_method(r, q, qnan, PW85_METHOD_DEFAULT, &res), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+  g_assert_true(isnan(res.mu2));
+  double zero[3] = {0, 0, 0};
+  g_assert_cmpint(pw85_contact_function_method(zero, q, q, PW85_METHOD_DEFAULT, &res), ==,
+                  PW85_OK);
+  g_assert_cmpfloat(res.mu2, ==, 0.0);
+  g_assert_cmpfloat(res.lambda, ==, 0.5);
+}
+
+/* Magnitudes on both sides of the screen's range (2^-60, 2^60): the same
+   pair scaled by 2^k (r) and 4^k (Q) has the same mu2 / 4^0 = mu2 and the
+   same lambda, whichever path (screened or rescaled) computes it. */
+static void test_magnitudes(gconstpointer data) {
+  Method const *m = data;
+  double const r0[3] = {0.7, -0.4, 1.3};
+  double const q10[6] = {1.5, 0.2, -0.1, 0.8, 0.3, 2.0};
+  double const q20[6] = {0.6, -0.05, 0.1, 1.1, 0.0, 0.4};
+  pw85_result ref;
+  int const s0 = pw85_contact_function_method(r0, q10, q20, m->id, &ref);
+  g_assert_cmpint(s0, ==, PW85_OK);
+  static const int ks[] = {-40, -31, -30, -29, 29, 30, 31, 40, 200, -200};
+  for (size_t i = 0; i < sizeof ks / sizeof ks[0]; ++i) {
+    double r[3], q1[6], q2[6];
+    for (int j = 0; j < 3; ++j) r[j] = ldexp(r0[j], ks[i]);
+    for (int j = 0; j < 6; ++j) {
+      q1[j] = ldexp(q10[j], 2 * ks[i]);
+      q2[j] = ldexp(q20[j], 2 * ks[i]);
+    }
+    pw85_result res;
+    g_assert_cmpint(pw85_contact_function_method(r, q1, q2, m->id, &res), ==, s0);
+    g_assert_cmpfloat(fabs(res.mu2 - ref.mu2), <=, 4e-15 * ref.mu2);
+    g_assert_cmpfloat(fabs(res.lambda - ref.lambda), <=, 1e-12);
+  }
 }
 
 /* BRENT is pw85_contact_function(): same mu2 and lambda bit for bit. */
@@ -487,7 +529,7 @@ int main(int argc, char **argv) {
       {"coaxial", test_coaxial},         {"tangency", test_tangency},
       {"coincident", test_coincident},   {"needle_disc", test_needle_disc},
       {"parallel_needles", test_parallel_needles}, {"spheres", test_spheres},
-      {"scales", test_scales},
+      {"scales", test_scales},           {"magnitudes", test_magnitudes},
   };
   for (size_t i = 0; i < N_METHODS; ++i)
     for (size_t j = 0; j < sizeof cases / sizeof cases[0]; ++j) {

@@ -1,5 +1,8 @@
 // extern "C" entry point of the method-selecting contact function (issue 7):
-// validate, call pw85::contact_method (src/core/methods.cpp), copy out.
+// validate, call pw85::contact_method (src/core/methods.cpp), copy out. Valid
+// arguments of moderate magnitude (nearly all calls) are recognised by one
+// screening pass and go to contact_method_in_range directly, skipping the
+// separate finiteness loops and the dispatcher's range test.
 #include <cmath>
 
 #include "pw85.h"
@@ -24,11 +27,20 @@ extern "C" int pw85_contact_function_method(double const r12[PW85_DIM],
   res->mu2_error = nan;
   res->iterations = 0;
   res->method = method;
-  int const status = pw85::capi::validate_pair_ldl(r12, q1, q2);
-  if (status != PW85_OK) return status;
+  if (r12 == nullptr || q1 == nullptr || q2 == nullptr) return PW85_ERR_INVALID_ARGUMENT;
   pw85::MethodResult m;
-  int const s = pw85::contact_method(method, pw85::load_vec3(r12), pw85::load_sym3(q1),
-                                     pw85::load_sym3(q2), m);
+  int s;
+  if (method >= PW85_METHOD_DEFAULT && method <= PW85_METHOD_ZHENG &&
+      pw85::capi::screen_contact_pair(r12, q1, q2, pw85::kSafeLo, pw85::kSafeHi)) {
+    // Common case: valid arguments of moderate magnitude, checked in one pass.
+    s = pw85::contact_method_in_range(method, pw85::load_vec3(r12), pw85::load_sym3(q1),
+                                      pw85::load_sym3(q2), m);
+  } else {
+    int const status = pw85::capi::validate_pair_ldl(r12, q1, q2);
+    if (status != PW85_OK) return status;
+    s = pw85::contact_method(method, pw85::load_vec3(r12), pw85::load_sym3(q1),
+                             pw85::load_sym3(q2), m);
+  }
   if (s == PW85_ERR_UNKNOWN_METHOD) return s;
   res->mu2 = m.mu2;
   res->lambda = m.lambda;

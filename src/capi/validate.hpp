@@ -67,5 +67,25 @@ inline bool screen_pair_ldl(double const *r, double const *q1, double const *q2,
   return r_ok & (qm >= lo) & (qm <= hi) && ldl_positive(q1) && ldl_positive(q2);
 }
 
+// The same kind of screen for pw85_contact_function_method: true when q1 and
+// q2 pass ldl_positive and max |r_i|, max |Q1_ij|, max |Q2_ij| each lie
+// strictly inside (lo, hi) (so r != 0 and everything is finite: a NaN entry
+// of a matrix fails a pivot, a NaN in r fails |r_i| < hi). False: take the
+// general path (validate_pair_ldl, then the dispatcher's scaling).
+inline bool screen_contact_pair(double const *r, double const *q1, double const *q2,
+                                double lo, double hi) noexcept {
+  double m1 = 0.0, m2 = 0.0;
+  for (int i = 0; i < kSym; ++i) {
+    double const a = std::fabs(q1[i]), b = std::fabs(q2[i]);
+    m1 = a > m1 ? a : m1;  // a NaN is skipped here and caught by the pivots
+    m2 = b > m2 ? b : m2;
+  }
+  double const r0 = std::fabs(r[0]), r1 = std::fabs(r[1]), r2 = std::fabs(r[2]);
+  double const rm = r0 > r1 ? (r0 > r2 ? r0 : r2) : (r1 > r2 ? r1 : r2);
+  bool const in = (r0 < hi) & (r1 < hi) & (r2 < hi) & (rm > lo) & (m1 > lo) & (m1 < hi) &
+                  (m2 > lo) & (m2 < hi);
+  return in && ldl_positive(q1) && ldl_positive(q2);
+}
+
 }  // namespace capi
 }  // namespace pw85

@@ -52,6 +52,16 @@ struct MethodResult {
 Status contact_method(int method, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                       MethodResult &res) noexcept;
 
+// Magnitudes that need no rescaling: every max |r_i|, max |Q1_ij|,
+// max |Q2_ij| strictly inside (kSafeLo, kSafeHi).
+constexpr double kSafeLo = 0x1p-60, kSafeHi = 0x1p60;
+
+// contact_method without its preliminaries, for callers that have checked
+// them (the C layer's one-pass screen): method in [kMethodDefault,
+// kMethodZheng], r != 0 and every magnitude in (kSafeLo, kSafeHi).
+Status contact_method_in_range(int method, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                               MethodResult &res) noexcept;
+
 // The methods themselves (one source file each). Preconditions: r != 0,
 // moderate magnitudes (see contact_method).
 Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,

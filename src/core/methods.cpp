@@ -78,6 +78,32 @@ Status contact_zheng_checked(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
 
 }  // namespace
 
+Status contact_method_in_range(int method, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                               MethodResult &res) noexcept {
+  res.method = method;
+  res.iterations = 0;
+  Status s;
+  switch (method) {
+    case kMethodBrent:
+      s = contact_brent_checked(r, q1, q2, res);
+      break;
+    case kMethodNewton:
+      s = contact_newton(r, q1, q2, res);
+      break;
+    case kMethodRational:
+      s = contact_rational(r, q1, q2, res);
+      break;
+    case kMethodZheng:  // dca_3d.cpp (issue 5)
+      s = contact_zheng_checked(r, q1, q2, res);
+      break;
+    default:
+      res.method = kMethodDefault;
+      s = contact_default(r, q1, q2, res);
+      break;
+  }
+  return s;
+}
+
 Status contact_method(int method, Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in,
                       MethodResult &res) noexcept {
   res.method = method;
@@ -104,7 +130,7 @@ Status contact_method(int method, Vec3 const &r_in, Sym3 const &q1_in, Sym3 cons
     qmax1 = std::fabs(q1[i]) > qmax1 ? std::fabs(q1[i]) : qmax1;
     qmax2 = std::fabs(q2[i]) > qmax2 ? std::fabs(q2[i]) : qmax2;
   }
-  constexpr double kLo = 0x1p-60, kHi = 0x1p60;
+  constexpr double kLo = kSafeLo, kHi = kSafeHi;
   bool const scale = !(rmax > kLo && rmax < kHi && qmax1 > kLo && qmax1 < kHi &&
                        qmax2 > kLo && qmax2 < kHi);
   int er = 0, eq = 0;
@@ -117,25 +143,7 @@ Status contact_method(int method, Vec3 const &r_in, Sym3 const &q1_in, Sym3 cons
       q2[i] = std::ldexp(q2[i], -eq);
     }
   }
-  Status s;
-  switch (method) {
-    case kMethodBrent:
-      s = contact_brent_checked(r, q1, q2, res);
-      break;
-    case kMethodNewton:
-      s = contact_newton(r, q1, q2, res);
-      break;
-    case kMethodRational:
-      s = contact_rational(r, q1, q2, res);
-      break;
-    case kMethodZheng:  // dca_3d.cpp (issue 5)
-      s = contact_zheng_checked(r, q1, q2, res);
-      break;
-    default:
-      res.method = kMethodDefault;
-      s = contact_default(r, q1, q2, res);
-      break;
-  }
+  Status const s = contact_method_in_range(method, r, q1, q2, res);
   if (scale) {
     res.mu2 = std::ldexp(res.mu2, 2 * er - eq);
     res.mu2_error = std::ldexp(res.mu2_error, 2 * er - eq);
