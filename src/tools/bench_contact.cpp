@@ -198,6 +198,7 @@ int main(int argc, char **argv) {
   char const *out = nullptr;
   int dump_k = 0;
   char const *dump_path = nullptr;
+  bool bad = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--n") && i + 1 < argc)
       n = std::atoi(argv[++i]);
@@ -208,10 +209,12 @@ int main(int argc, char **argv) {
     else if (!std::strcmp(argv[i], "--dump") && i + 2 < argc) {
       dump_k = std::atoi(argv[++i]);
       dump_path = argv[++i];
+    } else if (argv[i][0] == '-') {
+      bad = true;  // unknown option, or one missing its value
     } else
       out = argv[i];
   }
-  if (!out || n <= 0 || reps <= 0) {
+  if (bad || !out || n <= 0 || reps <= 0) {
     std::fprintf(stderr, "usage: %s [--n N] [--reps R] [--seed S] [--dump K FILE] OUT.csv\n",
                  argv[0]);
     return 2;

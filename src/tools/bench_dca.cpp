@@ -231,6 +231,7 @@ int main(int argc, char **argv) {
   int n = 2000, reps = 7;
   std::uint64_t seed = 20081014;
   char const *out = nullptr;
+  bool bad = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--n") && i + 1 < argc)
       n = std::atoi(argv[++i]);
@@ -238,10 +239,12 @@ int main(int argc, char **argv) {
       reps = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--seed") && i + 1 < argc)
       seed = std::strtoull(argv[++i], nullptr, 10);
+    else if (argv[i][0] == '-')
+      bad = true;  // unknown option, or one missing its value
     else
       out = argv[i];
   }
-  if (out == nullptr || n <= 0 || reps <= 0) {
+  if (bad || out == nullptr || n <= 0 || reps <= 0) {
     std::fprintf(stderr, "usage: bench_dca [--n N] [--reps R] [--seed S] OUT.csv\n");
     return 2;
   }

@@ -284,6 +284,7 @@ int main(int argc, char **argv) {
   char const *out = nullptr;
   char const *ref = std::getenv("PW85_REF_DATA");
   if (!ref) ref = PW85_REF_DATA_PATH;
+  bool bad = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--n") && i + 1 < argc)
       n = std::atoi(argv[++i]);
@@ -303,10 +304,12 @@ int main(int argc, char **argv) {
       batch = false;
     else if (!std::strcmp(argv[i], "--overlap-only"))
       overlap_only = true;
+    else if (argv[i][0] == '-')
+      bad = true;  // unknown option, or one missing its value
     else
       out = argv[i];
   }
-  if (!out || n <= 0 || reps <= 0 || batch_n < 2 || batch_m <= 0 || batch_reps <= 0) {
+  if (bad || !out || n <= 0 || reps <= 0 || batch_n < 2 || batch_m <= 0 || batch_reps <= 0) {
     std::fprintf(stderr,
                  "usage: %s [--n N] [--reps R] [--seed S] [--ref FILE] [--batch-n N] "
                  "[--batch-m M] [--batch-reps R] [--no-batch] [--overlap-only] OUT.csv\n",
