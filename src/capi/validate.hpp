@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "../core/status.hpp"
+#include "../core/magnitude.hpp"
 #include "../core/sym3.hpp"
 
 namespace pw85 {
@@ -56,12 +57,9 @@ inline Status validate_pair_ldl(double const *r12, double const *q1, double cons
 // scaling). Pointers must be non-null.
 inline bool screen_pair_ldl(double const *r, double const *q1, double const *q2, double lo,
                             double hi) noexcept {
-  double qm = 0.0;
-  for (int i = 0; i < kSym; ++i) {
-    double const a = std::fabs(q1[i]), b = std::fabs(q2[i]);
-    qm = a > qm ? a : qm;  // a NaN is skipped here and caught by the pivots
-    qm = b > qm ? b : qm;
-  }
+  // A NaN in a matrix is skipped by max_abs and caught by the pivots.
+  double const m1 = max_abs(q1, kSym), m2 = max_abs(q2, kSym);
+  double const qm = m1 > m2 ? m1 : m2;
   bool const r_ok =
       (std::fabs(r[0]) <= hi) & (std::fabs(r[1]) <= hi) & (std::fabs(r[2]) <= hi);
   return r_ok & (qm >= lo) & (qm <= hi) && ldl_positive(q1) && ldl_positive(q2);
@@ -74,14 +72,10 @@ inline bool screen_pair_ldl(double const *r, double const *q1, double const *q2,
 // general path (validate_pair_ldl, then the dispatcher's scaling).
 inline bool screen_contact_pair(double const *r, double const *q1, double const *q2,
                                 double lo, double hi) noexcept {
-  double m1 = 0.0, m2 = 0.0;
-  for (int i = 0; i < kSym; ++i) {
-    double const a = std::fabs(q1[i]), b = std::fabs(q2[i]);
-    m1 = a > m1 ? a : m1;  // a NaN is skipped here and caught by the pivots
-    m2 = b > m2 ? b : m2;
-  }
+  // A NaN in a matrix is skipped by max_abs and caught by the pivots.
+  double const m1 = max_abs(q1, kSym), m2 = max_abs(q2, kSym);
   double const r0 = std::fabs(r[0]), r1 = std::fabs(r[1]), r2 = std::fabs(r[2]);
-  double const rm = r0 > r1 ? (r0 > r2 ? r0 : r2) : (r1 > r2 ? r1 : r2);
+  double const rm = max_abs(r, kDim);
   bool const in = (r0 < hi) & (r1 < hi) & (r2 < hi) & (rm > lo) & (m1 > lo) & (m1 < hi) &
                   (m2 > lo) & (m2 < hi);
   return in && ldl_positive(q1) && ldl_positive(q2);

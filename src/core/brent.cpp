@@ -26,6 +26,7 @@
 #include "contact.hpp"
 #include "f_cholesky.hpp"
 #include "f_dd.hpp"
+#include "magnitude.hpp"
 
 namespace pw85 {
 
@@ -56,15 +57,6 @@ double f_neg_for_gsl(double lambda, void *params) {
   return -f;
 }
 
-// Power-of-two exponent e such that the largest |x_i| * 2^-e lies in [0.5, 1).
-int scale_exponent(double const *x, int n) noexcept {
-  double m = 0.0;
-  for (int i = 0; i < n; ++i) m = std::fmax(m, std::fabs(x[i]));
-  int e;
-  std::frexp(m, &e);
-  return e;
-}
-
 }  // namespace
 
 Status contact_brent(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in,
@@ -77,8 +69,8 @@ Status contact_brent(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in,
     return kOk;
   }
   // r' = 2^-er r and Q' = 2^-eq Q give mu2' = 2^(eq - 2 er) mu2, exactly.
-  int const er = scale_exponent(r_in.x, kDim);
-  int const eq = std::max(scale_exponent(q1_in.a, kSym), scale_exponent(q2_in.a, kSym));
+  int const er = max_exponent(r_in.x, kDim);
+  int const eq = std::max(max_exponent(q1_in.a, kSym), max_exponent(q2_in.a, kSym));
   FParams p;
   for (int i = 0; i < kDim; ++i) p.r[i] = std::ldexp(r_in[i], -er);
   for (int i = 0; i < kSym; ++i) {

@@ -20,6 +20,7 @@
 #include <limits>
 
 #include "dca.hpp"
+#include "magnitude.hpp"
 
 namespace pw85 {
 
@@ -51,15 +52,6 @@ bool evaluate(double lambda, Vec2 const &r, Sym2 const &q1, Sym2 const &q2,
   return std::isfinite(out.f) && std::isfinite(out.df) && std::isfinite(out.d2f);
 }
 
-// Exponent e with max |x_i| 2^-e in [0.5, 1).
-int scale_exponent(double const *x, int n) noexcept {
-  double m = 0.0;
-  for (int i = 0; i < n; ++i) m = std::fmax(m, std::fabs(x[i]));
-  int e;
-  std::frexp(m, &e);
-  return e;
-}
-
 }  // namespace
 
 Status contact_function_2d(Vec2 const &r_in, Sym2 const &q1_in, Sym2 const &q2_in,
@@ -71,9 +63,9 @@ Status contact_function_2d(Vec2 const &r_in, Sym2 const &q1_in, Sym2 const &q2_i
     return kOk;
   }
   // Exact rescaling: r' = 2^-er r, Q' = 2^-eq Q give mu2' = 2^(eq - 2 er) mu2.
-  int const er = scale_exponent(r_in.x, 2);
+  int const er = max_exponent(r_in.x, 2);
   double qs[6] = {q1_in[0], q1_in[1], q1_in[2], q2_in[0], q2_in[1], q2_in[2]};
-  int const eq = scale_exponent(qs, 6);
+  int const eq = max_exponent(qs, 6);
   Vec2 const r{{std::ldexp(r_in[0], -er), std::ldexp(r_in[1], -er)}};
   Sym2 q1, q2;
   for (int i = 0; i < 3; ++i) {

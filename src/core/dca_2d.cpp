@@ -47,6 +47,7 @@
 #include <limits>
 
 #include "dca.hpp"
+#include "magnitude.hpp"
 
 namespace pw85 {
 
@@ -163,10 +164,7 @@ struct Phi {
 
 // Even exponent 2k such that the largest |x_i| * 2^-2k is of order one.
 int even_scale_exponent(Sym2 const &a, Sym2 const &b) noexcept {
-  double m = 0.0;
-  for (int i = 0; i < 3; ++i) m = std::fmax(m, std::fmax(std::fabs(a[i]), std::fabs(b[i])));
-  int e;
-  std::frexp(m, &e);
+  int const e = std::max(max_exponent(a.a, 3), max_exponent(b.a, 3));
   return 2 * (e / 2);
 }
 

@@ -34,6 +34,7 @@
 
 #include "dca.hpp"
 #include "f_cholesky.hpp"
+#include "magnitude.hpp"
 
 namespace pw85 {
 
@@ -106,10 +107,7 @@ class PlaneDca {
 };
 
 int even_scale_exponent(Sym3 const &a, Sym3 const &b) noexcept {
-  double m = 0.0;
-  for (int i = 0; i < kSym; ++i) m = std::fmax(m, std::fmax(std::fabs(a[i]), std::fabs(b[i])));
-  int e;
-  std::frexp(m, &e);
+  int const e = std::max(max_exponent(a.a, kSym), max_exponent(b.a, kSym));
   return 2 * (e / 2);
 }
 
@@ -226,9 +224,7 @@ Status contact_zheng(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
     return kOk;
   }
   // |r| without overflow: scale by the largest component (exact power of 2).
-  double m = std::fmax(std::fabs(r[0]), std::fmax(std::fabs(r[1]), std::fabs(r[2])));
-  int er;
-  std::frexp(m, &er);
+  int const er = max_exponent(r.x, kDim);
   Vec3 rs;
   for (int i = 0; i < kDim; ++i) rs[i] = std::ldexp(r[i], -er);
   double const norm = std::sqrt(dot(rs, rs));

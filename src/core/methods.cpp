@@ -11,19 +11,12 @@
 
 #include "contact.hpp"
 #include "dca.hpp"
+#include "magnitude.hpp"
 #include "newton.hpp"
 
 namespace pw85 {
 
 namespace {
-
-int exponent_of_max(double const *x, int n) noexcept {
-  double m = 0.0;
-  for (int i = 0; i < n; ++i) m = std::fmax(m, std::fabs(x[i]));
-  int e;
-  std::frexp(m, &e);
-  return e;
-}
 
 // Error estimate of a result (mu2, lambda) of a method without its own
 // accuracy control: the (M10) estimate of a double L D L^T evaluation at
@@ -120,23 +113,17 @@ Status contact_method(int method, Vec3 const &r_in, Sym3 const &q1_in, Sym3 cons
   }
   Vec3 r = r_in;
   Sym3 q1 = q1_in, q2 = q2_in;
-  // Cheap range test first; frexp only for extreme magnitudes.
-  double rmax = 0.0, qmax1 = 0.0, qmax2 = 0.0;
-  // Plain comparisons, not std::fmax: without -ffast-math that is a call
-  // into libm through the PLT, three of them cost about 10 ns per call here.
-  // The inputs are finite (checked by the C layer), so NaN handling is moot.
-  for (int i = 0; i < kDim; ++i) rmax = std::fabs(r[i]) > rmax ? std::fabs(r[i]) : rmax;
-  for (int i = 0; i < kSym; ++i) {
-    qmax1 = std::fabs(q1[i]) > qmax1 ? std::fabs(q1[i]) : qmax1;
-    qmax2 = std::fabs(q2[i]) > qmax2 ? std::fabs(q2[i]) : qmax2;
-  }
+  // Cheap range test first (magnitude.hpp); frexp only for extreme
+  // magnitudes. The inputs are finite (checked by the C layer).
+  double const rmax = max_abs(r.x, kDim), qmax1 = max_abs(q1.a, kSym),
+               qmax2 = max_abs(q2.a, kSym);
   constexpr double kLo = kSafeLo, kHi = kSafeHi;
   bool const scale = !(rmax > kLo && rmax < kHi && qmax1 > kLo && qmax1 < kHi &&
                        qmax2 > kLo && qmax2 < kHi);
   int er = 0, eq = 0;
   if (scale) {
-    er = exponent_of_max(r.x, kDim);
-    eq = std::max(exponent_of_max(q1.a, kSym), exponent_of_max(q2.a, kSym));
+    er = max_exponent(r.x, kDim);
+    eq = std::max(max_exponent(q1.a, kSym), max_exponent(q2.a, kSym));
     for (int i = 0; i < kDim; ++i) r[i] = std::ldexp(r[i], -er);
     for (int i = 0; i < kSym; ++i) {
       q1[i] = std::ldexp(q1[i], -eq);

@@ -9,6 +9,7 @@
 // chapter 3, eqs. (6), (10), (11)).
 #include <cmath>
 
+#include "magnitude.hpp"
 #include "overlap.hpp"
 #include "overlap_dd.hpp"
 
@@ -159,15 +160,6 @@ inline bool newton_values(double l, Vec3 const &r, Sym3 const &q1, Sym3 const &q
 // Rounds l in [0, 1] to the grid 2^-52 Z (exact: (l + 1) - 1).
 inline double to_grid(double l) noexcept {
   return (l + 1.0) - 1.0;
-}
-
-inline double max_abs(double const *x, int n) noexcept {
-  double m = 0.0;
-  for (int i = 0; i < n; ++i) {
-    double const a = std::fabs(x[i]);
-    m = a > m ? a : m;  // inputs are finite: no NaN semantics needed
-  }
-  return m;
 }
 
 // p(l) from its coefficients P_j in the basis s^(4-j) t^j (eq. (O14)),
