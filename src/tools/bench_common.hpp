@@ -1,16 +1,34 @@
 // Pieces shared by the benchmark programs bench_contact and bench_overlap:
 // the seeded generator of the scenes (so both draw the same kind of
-// ellipsoids from a seed) and the machine description of the CSV header.
+// ellipsoids from a seed) and the machine description of the CSV header;
+// bench_dca too takes the common options (common_option).
 // Benchmarks only, not part of the library.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
 namespace bench {
+
+// The options every benchmark takes: --n N, --reps R, --seed S. Returns the
+// number of entries of argv consumed at argv[i] (2), or 0 when argv[i] is
+// none of them (or its value is missing).
+inline int common_option(int argc, char **argv, int i, int &n, int &reps, uint64_t &seed) {
+  if (i + 1 >= argc) return 0;
+  if (!std::strcmp(argv[i], "--n"))
+    n = std::atoi(argv[i + 1]);
+  else if (!std::strcmp(argv[i], "--reps"))
+    reps = std::atoi(argv[i + 1]);
+  else if (!std::strcmp(argv[i], "--seed"))
+    seed = std::strtoull(argv[i + 1], nullptr, 10);
+  else
+    return 0;
+  return 2;
+}
 
 struct Rng {  // splitmix64
   uint64_t s;

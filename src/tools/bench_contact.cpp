@@ -200,12 +200,8 @@ int main(int argc, char **argv) {
   char const *dump_path = nullptr;
   bool bad = false;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--n") && i + 1 < argc)
-      n = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--reps") && i + 1 < argc)
-      reps = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--seed") && i + 1 < argc)
-      seed = std::strtoull(argv[++i], nullptr, 10);
+    if (int const k = bench::common_option(argc, argv, i, n, reps, seed))
+      i += k - 1;
     else if (!std::strcmp(argv[i], "--dump") && i + 2 < argc) {
       dump_k = std::atoi(argv[++i]);
       dump_path = argv[++i];

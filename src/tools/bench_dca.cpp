@@ -30,6 +30,7 @@
 #include <quadmath.h>
 #include <time.h>
 
+#include "bench_common.hpp"
 #include "pw85.h"
 
 namespace {
@@ -233,12 +234,8 @@ int main(int argc, char **argv) {
   char const *out = nullptr;
   bool bad = false;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--n") && i + 1 < argc)
-      n = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--reps") && i + 1 < argc)
-      reps = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--seed") && i + 1 < argc)
-      seed = std::strtoull(argv[++i], nullptr, 10);
+    if (int const k = bench::common_option(argc, argv, i, n, reps, seed))
+      i += k - 1;
     else if (argv[i][0] == '-')
       bad = true;  // unknown option, or one missing its value
     else
