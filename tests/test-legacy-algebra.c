@@ -186,11 +186,37 @@ static void free_grid(RefGrid *g) {
   g_free(g->lambdas);
 }
 
+/* Errors of a polynomial evaluated from its computed coefficients against the
+ * exact __float128 value: relative, and scaled by DBL_EPSILON times the
+ * magnitude of the sampled terms that made the coefficients. */
+typedef struct {
+  double max_rel, max_scaled;
+  gsize n_rel_1e12, n;
+} PolyErr;
+
+static void poly_err_add(PolyErr *e, double act, double exp, double mag) {
+  double const rel = legacy_rel_error(act, exp);
+  double const scaled = fabs(act - exp) / (DBL_EPSILON * mag);
+  if (rel > e->max_rel) e->max_rel = rel;
+  if (scaled > e->max_scaled) e->max_scaled = scaled;
+  if (rel > 1e-12) ++e->n_rel_1e12;
+  ++e->n;
+}
+
+/* Reports e and asserts the coefficients' error bound (4 DBL_EPSILON times
+ * the magnitude of the terms). */
+static void poly_err_check(const PolyErr *e, const char *name, const char *terms) {
+  g_test_message("%s: %" G_GSIZE_FORMAT " values; max |error| = %.3g "
+                 "DBL_EPSILON x (terms of %s); max relative error %.3g; "
+                 "%" G_GSIZE_FORMAT " values off by more than 1e-12 relative",
+                 name, e->n, e->max_scaled, terms, e->max_rel, e->n_rel_1e12);
+  g_assert_cmpfloat(e->max_scaled, <=, 4.0);
+}
+
 static void test_detQ_as_poly_reference(void) {
   RefGrid g;
   if (!read_grid(&g)) return;
-  double max_rel = 0.0, max_scaled = 0.0;
-  gsize n_rel_1e12 = 0, n = 0;
+  PolyErr e = {0};
   for (gsize i1 = 0; i1 < g.ns; ++i1) {
     const double *q1 = g.spheroids + 6 * i1;
     for (gsize i2 = 0; i2 < g.ns; ++i2) {
@@ -213,29 +239,18 @@ static void test_detQ_as_poly_reference(void) {
         double const x = g.lambdas[l];
         q_interpolate(q1, q2, x, qm);
         double const exp = (double)q_det_sym(qm);
-        double const act = b[0] + x * (b[1] + x * (b[2] + x * b[3]));
-        double const rel = legacy_rel_error(act, exp);
-        double const scaled = fabs(act - exp) / (DBL_EPSILON * mag);
-        if (rel > max_rel) max_rel = rel;
-        if (scaled > max_scaled) max_scaled = scaled;
-        if (rel > 1e-12) ++n_rel_1e12;
-        ++n;
+        poly_err_add(&e, b[0] + x * (b[1] + x * (b[2] + x * b[3])), exp, mag);
       }
     }
   }
-  g_test_message("detQ_as_poly: %" G_GSIZE_FORMAT " values; max |error| = %.3g "
-                 "DBL_EPSILON x (terms of b(-1, 0, 1/2, 1)); max relative error %.3g; "
-                 "%" G_GSIZE_FORMAT " values off by more than 1e-12 relative",
-                 n, max_scaled, max_rel, n_rel_1e12);
-  g_assert_cmpfloat(max_scaled, <=, 4.0);
+  poly_err_check(&e, "detQ_as_poly", "b(-1, 0, 1/2, 1)");
   free_grid(&g);
 }
 
 static void test_rT_adjQ_r_as_poly_reference(void) {
   RefGrid g;
   if (!read_grid(&g)) return;
-  double max_rel = 0.0, max_scaled = 0.0;
-  gsize n_rel_1e12 = 0, n = 0;
+  PolyErr e = {0};
   for (gsize i1 = 0; i1 < g.ns; ++i1) {
     const double *q1 = g.spheroids + 6 * i1;
     for (gsize i2 = 0; i2 < g.ns; ++i2) {
@@ -258,22 +273,12 @@ static void test_rT_adjQ_r_as_poly_reference(void) {
           double const x = g.lambdas[l];
           q_interpolate(q1, q2, x, qm);
           double const exp = (double)q_xT_adjA_x(rq, qm);
-          double const act = a[0] + x * (a[1] + x * a[2]);
-          double const rel = legacy_rel_error(act, exp);
-          double const scaled = fabs(act - exp) / (DBL_EPSILON * mag);
-          if (rel > max_rel) max_rel = rel;
-          if (scaled > max_scaled) max_scaled = scaled;
-          if (rel > 1e-12) ++n_rel_1e12;
-          ++n;
+          poly_err_add(&e, a[0] + x * (a[1] + x * a[2]), exp, mag);
         }
       }
     }
   }
-  g_test_message("rT_adjQ_r_as_poly: %" G_GSIZE_FORMAT " values; max |error| = %.3g "
-                 "DBL_EPSILON x (terms of a(-1, 0, 1)); max relative error %.3g; "
-                 "%" G_GSIZE_FORMAT " values off by more than 1e-12 relative",
-                 n, max_scaled, max_rel, n_rel_1e12);
-  g_assert_cmpfloat(max_scaled, <=, 4.0);
+  poly_err_check(&e, "rT_adjQ_r_as_poly", "a(-1, 0, 1)");
   free_grid(&g);
 }
 
