@@ -82,11 +82,14 @@ static hsize_t dataset_size(hid_t file, const char *name, int rank, hsize_t *dim
   return n;
 }
 
-double *refdata_read_double(hid_t file, const char *name, int rank, hsize_t *dims) {
+/* The whole dataset as a new array of n elements of the given memory type
+ * (converted by HDF5), or NULL with a message. */
+static void *read_as(hid_t file, const char *name, int rank, hsize_t *dims, hid_t type,
+                     size_t size) {
   hsize_t const n = dataset_size(file, name, rank, dims);
   if (n == 0) return NULL;
-  double *buf = g_new(double, n);
-  if (H5LTread_dataset_double(file, name, buf) < 0) {
+  void *buf = g_malloc_n(n, size);
+  if (H5LTread_dataset(file, name, type, buf) < 0) {
     g_test_message("refdata: cannot read %s", name);
     g_free(buf);
     return NULL;
@@ -94,16 +97,12 @@ double *refdata_read_double(hid_t file, const char *name, int rank, hsize_t *dim
   return buf;
 }
 
+double *refdata_read_double(hid_t file, const char *name, int rank, hsize_t *dims) {
+  return read_as(file, name, rank, dims, H5T_NATIVE_DOUBLE, sizeof(double));
+}
+
 int *refdata_read_int(hid_t file, const char *name, int rank, hsize_t *dims) {
-  hsize_t const n = dataset_size(file, name, rank, dims);
-  if (n == 0) return NULL;
-  int *buf = g_new(int, n);
-  if (H5LTread_dataset_int(file, name, buf) < 0) {
-    g_test_message("refdata: cannot read %s", name);
-    g_free(buf);
-    return NULL;
-  }
-  return buf;
+  return read_as(file, name, rank, dims, H5T_NATIVE_INT, sizeof(int));
 }
 
 /* TRUE if group/name exists (the group itself may be missing: expected
