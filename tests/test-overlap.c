@@ -118,9 +118,10 @@ static void test_tangent_aligned(void) {
 /* Sweep across exact tangency of axis-aligned ellipsoids whose centres lie
  * on a common axis: the tips touch at |r12| = a + b, so the verdict is 1 iff
  * |r12| < a + b. At this configuration the separating plane normal to r12
- * (eq. (O11)) and the segment between the centres (eq. (O12)) are both
- * exactly tight, so a wrong sign, a missing margin or a strict/non-strict
- * mix-up in either certificate gives a wrong verdict here. The same pairs
+ * (eq. (O11)) is exactly tight and the quartic p of eq. (O4) has its minimum
+ * 0 at tangency, so a wrong sign, a missing margin or a strict/non-strict
+ * mix-up in the plane test or in a certificate on p (eqs. (O13), (O14),
+ * (O18)) gives a wrong verdict here. The same pairs
  * are repeated with Q scaled by 4^k and r12 by 2^k (mu^2 unchanged, exact):
  * k = 0, +-25 stay in the range where no scaling is done, k = +-40, +-200
  * go through the exact power-of-two scaling (eq. (O1)). */
@@ -168,8 +169,9 @@ static void test_tangent_sweep(void) {
 /* Elongated ellipsoids (semi-axes in [0.01, 100]) with centre distance
  * between 0.05 and 1.2 times the sum of the largest semi-axes: many pairs
  * near contact with the contact point off the line of centres, so neither
- * the plane normal to r12 nor the segment decides them and the quartic
- * coefficient test and the minimisation of p (eqs. (O13), (O14)) do.
+ * the plane normal to r12 nor the coefficient test (O13) decides them; the
+ * subdivision of p (eq. (O18)) and, nearer tangency, the minimisation of p
+ * and the witnesses (eqs. (O14), (O6)) do.
  * Verdicts against the long-double reference, away from tangency
  * (|mu2 - 1| > 1e-7, the reference's accuracy margin). */
 static void test_off_axis(void) {

@@ -8,6 +8,8 @@
 // f(l) = l (1 - l) r^T Q(l)^{-1} r, mu^2 = max f (pw85 documentation,
 // chapter 3, eqs. (6), (10), (11)).
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include "magnitude.hpp"
 #include "overlap.hpp"
@@ -234,6 +236,73 @@ inline bool p_negative(double l, Vec3 const &r, V2 const rr[kSym], Sym3 const &q
 // Decided verdict (0 or 1) or kUndecided.
 constexpr int kUndecided = -1;
 
+// The bounded quantities of eq. (O10) that the later certificates reuse:
+// det Q_k and adj Q_k (m1, m2), c0 = r^T adj Q1 r, c1 = r^T M r,
+// c2 = r^T adj Q2 r, b1 = tr(adj(Q1) Q2), b2 = tr(adj(Q2) Q1), and the
+// inner coefficients P1, P2, P3 of p in the basis s^(4-j) t^j.
+struct Coefs {
+  V2 det1, det2, m1[kSym], m2[kSym], mm[kSym], c0, c1, c2, b1, b2, p1, p2, p3;
+};
+
+// Coefficients of p in the basis s^(4-j) t^j, s = 1 - l, t = l (eq. (O10)):
+// P0 = b0 = det Q1, P1 = b0 + b1 - c0, P2 = b1 + b2 - c1, P3 = b2 + b3 - c2,
+// P4 = b3 = det Q2, with M (mm) the mixed adjugate.
+inline void coefficients(V2 const rr[kSym], SymB const &b1q, SymB const &b2q,
+                         Coefs &c) noexcept {
+  c.det1 = det_adj(b1q, c.m1);
+  c.det2 = det_adj(b2q, c.m2);
+  c.c0 = quad(c.m1, rr);
+  c.c2 = quad(c.m2, rr);
+  c.b1 = trace_adj(c.m1, b2q);
+  c.b2 = trace_adj(c.m2, b1q);
+  mixed_adj(b1q, b2q, c.mm);
+  c.c1 = quad(c.mm, rr);
+  c.p1 = (c.det1 + c.b1) - flip(c.c0);
+  c.p2 = (c.b1 + c.b2) - flip(c.c1);
+  c.p3 = (c.b2 + c.det2) - flip(c.c2);
+}
+
+// The certificate (O18): the Bernstein coefficients x[0..4] of p (scaled
+// by 6 so that binom(4, j) divides exactly: 6 P0, 1.5 P1, P2, 1.5 P3, 6 P4)
+// subdivided at tau = wt / (ws + wt) by de Casteljau's algorithm in
+// homogeneous form (weights ws, wt >= 0 instead of 1 - tau, tau: the results
+// are the coefficients on [0, tau] and [tau, 1] times powers of ws + wt > 0,
+// same signs, and no division). All of them > err: p > 0 on [0, 1], overlap
+// (1). The one they share is (ws + wt)^4 6 p(tau): <= -err means
+// f(tau) >= 1, separation (0). Otherwise kUndecided.
+// The weights are first scaled by the power of two 2^-e that brings
+// ws + wt into [0.5, 1) (exact; e from the exponent bits, no libm call), so
+// that no product overflows and an underflow error is never amplified:
+// every value of the algorithm is then a combination of the x[j] with
+// nonnegative weights summing to less than 1, which keeps the absolute
+// term kAbs of (O3) valid. ws and wt must be >= 0 with ws + wt < 2^1000
+// (here they are below 2^220, eq. (O9)); a NaN makes every test false.
+inline int subdivide(V2 const x[5], double ws, double wt) noexcept {
+  std::uint64_t bits;
+  double const sum = ws + wt;
+  std::memcpy(&bits, &sum, sizeof bits);
+  // Biased exponent E of sum; 2^-(E - 1022) has biased exponent 2045 - E
+  // (normal for 1 <= E <= 2044; sum = 0 or subnormal (E = 0): 2^1022 times
+  // a value below 2^-1022, still < 1).
+  std::uint64_t const scale_bits = (std::uint64_t{2045} << 52) - (bits & 0x7ff0000000000000u);
+  double scale;
+  std::memcpy(&scale, &scale_bits, sizeof scale);
+  V2 const s{ws * scale, ws * scale}, t{wt * scale, wt * scale};
+  V2 const y0 = s * x[0] + t * x[1], y1 = s * x[1] + t * x[2], y2 = s * x[2] + t * x[3],
+           y3 = s * x[3] + t * x[4];
+  V2 const z0 = s * y0 + t * y1, z1 = s * y1 + t * y2, z2 = s * y2 + t * y3;
+  V2 const u0 = s * z0 + t * z1, u1 = s * z1 + t * z2;
+  V2 const pt = s * u0 + t * u1;
+  bool const positive = (y0[0] > err(y0)) & (z0[0] > err(z0)) & (u0[0] > err(u0)) &
+                        (pt[0] > err(pt)) & (u1[0] > err(u1)) & (z2[0] > err(z2)) &
+                        (y3[0] > err(y3));
+  bool const negative = pt[0] <= -err(pt);
+  // 1, 0 or kUndecided without a branch on the verdict (unpredictable).
+  return static_cast<int>(positive) - static_cast<int>(!positive & !negative);
+}
+
+int filters_slow(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, double l, int &st) noexcept;
+
 // The floating-point filters on inputs in the safe range (eq. (O9)):
 // |Q_ij| <= 2^60, |r_i| <= 2^60, r != 0. Returns 0, 1 or kUndecided.
 int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
@@ -244,46 +313,71 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
   // --- Separating plane orthogonal to r (eq. (O11)). ---
   // h_i^2 = r^T Q_i r: E1 lies in {x : r.x <= h1}, E2 in {x : r.x >= r.r - h2}.
   V2 const a1 = quad(b1q.p, rr), a2 = quad(b2q.p, rr);
-  double const h1 = std::sqrt(a1[0] + err(a1)), h2 = std::sqrt(a2[0] + err(a2));
+  // Tested squared, without square roots (shorter latency to the branch):
+  // R = r.r >= sqrt(A1) + sqrt(A2) iff D = R^2 - A1 - A2 >= 0 and
+  // D^2 >= 4 A1 A2, with A_k >= h_k^2 and margins for every rounding.
+  double const A1 = a1[0] + err(a1), A2 = a2[0] + err(a2);
   double const rdr = rr[0][0] + rr[1][0] + rr[2][0];
-  if (rdr >= (h1 + h2) * (1.0 + 32 * kU)) {
+  double const d = (rdr * rdr) * (1.0 - 16 * kU) - (A1 + A2) * (1.0 + 16 * kU);
+  if ((d > 0.0) & ((d * d) * (1.0 - 16 * kU) >= (4.0 * (A1 * A2)) * (1.0 + 16 * kU) + 0x1p-1000)) {
     st = kStageSpheres;
     return 0;
   }
-  // --- Determinants and adjugates (eq. (O3)). ---
-  V2 m1[kSym], m2[kSym];
-  V2 const det1 = det_adj(b1q, m1), det2 = det_adj(b2q, m2);
-  // c0 = r^T adj Q1 r, c2 = r^T adj Q2 r (eq. (O10)).
-  V2 const c0 = quad(m1, rr), c2 = quad(m2, rr);
-  // --- Segment (eq. (O12)): the ray t r leaves E1 at t = s1 = sqrt(det Q1 / c0)
-  // and E2 covers t in (1 - s2, 1], s2 = sqrt(det Q2 / c2); s1 + s2 > 1 means
-  // a point of the segment lies in both interiors. Certified with lower
-  // bounds of the determinants and upper bounds of c0, c2. ---
-  {
-    double const lo1 = det1[0] - err(det1), lo2 = det2[0] - err(det2);
-    double const hi1 = c0[0] + err(c0), hi2 = c2[0] + err(c2);
-    if (lo1 > 0.0 && lo2 > 0.0) {
-      double const ssum = std::sqrt(lo1 / hi1) + std::sqrt(lo2 / hi2);
-      if (ssum * (1.0 - 16 * kU) > 1.0) {
-        st = kStageSpheres;
-        return 1;
-      }
-    }
-  }
-  // --- Coefficients of p in the basis s^(4-j) t^j, s = 1 - l, t = l
-  // (eq. (O10)): P0 = b0, P1 = b0 + b1 - c0, P2 = b1 + b2 - c1,
-  // P3 = b2 + b3 - c2, P4 = b3. ---
-  V2 const b1 = trace_adj(m1, b2q), b2 = trace_adj(m2, b1q);
-  V2 mm[kSym];
-  mixed_adj(b1q, b2q, mm);
-  V2 const c1 = quad(mm, rr);
-  V2 const p1 = (det1 + b1) - flip(c0);
-  V2 const p2 = (b1 + b2) - flip(c1);
-  V2 const p3 = (b2 + det2) - flip(c2);
-  if (p1[0] > err(p1) && p2[0] > err(p2) && p3[0] > err(p3)) {
-    st = kStageFilter;  // (O13): all coefficients positive, p > 0 on [0, 1]
+  double const h1 = std::sqrt(A1), h2 = std::sqrt(A2);
+  // --- Coefficients of p (eq. (O10)). ---
+  Coefs c;
+  coefficients(rr, b1q, b2q, c);
+  V2 const x[5] = {6.0 * c.det1, 1.5 * c.p1, c.p2, 1.5 * c.p3, 6.0 * c.det2};
+  // (O13): the coefficients themselves positive (also covers the pairs
+  // whose weights below underflow, e.g. |r| tiny).
+  if ((x[0][0] > err(x[0])) & (x[1][0] > err(x[1])) & (x[2][0] > err(x[2])) &
+      (x[3][0] > err(x[3])) & (x[4][0] > err(x[4]))) {
+    st = kStageFilter;
     return 1;
   }
+  // --- (O18) at tau0 = h1 / (h1 + h2) (the start (M7) of docs/methods.md,
+  // with the support values of the plane test): most pairs. ---
+  int v = subdivide(x, h2, h1);
+  if (v != kUndecided) {
+    st = kStageFilter;
+    return v;
+  }
+  // --- (O18) at tau1: one step of the map (M19) of docs/methods.md from
+  // l = 1/2, tau1 = g1 / (g1 + g2), g_k^2 = n^T Q_k n along
+  // n = adj(Q1 + Q2) r = (adj Q1 + M + adj Q2) r (the normal of the contact
+  // for l = 1/2). Not certified: any tau gives a valid certificate. ---
+  Sym3 a;
+  for (int i = 0; i < kSym; ++i) a[i] = (c.m1[i][0] + c.mm[i][0]) + c.m2[i][0];
+  Vec3 const n = multiply(a, r);
+  double const g1 = std::sqrt(dot(n, multiply(q1, n)));
+  double const g2 = std::sqrt(dot(n, multiply(q2, n)));
+  v = subdivide(x, g2, g1);
+  if (v != kUndecided) {
+    st = kStageFilter;
+    return v;
+  }
+  double l = to_grid(g1 / (g1 + g2));
+  if (!(l > 0.0 && l < 1.0)) l = to_grid(h1 / (h1 + h2));
+  if (!(l > 0.0 && l < 1.0)) l = 0.5;
+  return filters_slow(r, q1, q2, l, st);
+}
+
+// The pairs that (O18) leaves open (near contact, or coefficients whose
+// bounds are too loose): Newton on log f from l, p(l) from Q(l), witnesses.
+// Rare (under 1 % of the pairs of the benchmark scenes), so it recomputes
+// the coefficients rather than receive them: the hot path then keeps them
+// in registers.
+[[gnu::noinline]] int filters_slow(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, double l,
+                                   int &st) noexcept {
+  V2 const rb[kDim] = {pos(r[0]), pos(r[1]), pos(r[2])};
+  V2 rr[kSym];
+  outer(rb, rr);
+  SymB const b1q = bound(q1), b2q = bound(q2);
+  Coefs c;
+  coefficients(rr, b1q, b2q, c);
+  V2 const &det1 = c.det1, &det2 = c.det2, &c0 = c.c0, &c1 = c.c1, &c2 = c.c2, &b1 = c.b1,
+           &b2 = c.b2, &p1 = c.p1, &p2 = c.p2, &p3 = c.p3;
+  V2 const *m1 = c.m1, *m2 = c.m2;
   // --- Maximiser of f = l (1 - l) N / D (not certified: only chooses l),
   // N = c0 s^2 + c1 s t + c2 t^2 = r^T adj Q(l) r, D = det Q(l) (eq. (O10)),
   // by safeguarded Newton steps on phi = log f (concave on (0, 1): f is
@@ -299,8 +393,6 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
   double const n0 = c0[0], n1 = c1[0] - 2.0 * c0[0], n2 = (c0[0] - c1[0]) + c2[0];
   double const d0 = det1[0], d1 = b1[0] - 3.0 * d0, d2 = (3.0 * d0 - 2.0 * b1[0]) + b2[0];
   double const d3 = ((b1[0] - d0) - b2[0]) + det2[0];
-  double l = to_grid(h1 / (h1 + h2));
-  if (!(l > 0.0 && l < 1.0)) l = 0.5;
   double lo = 0.0, hi = 1.0;
   V2 p = p_bernstein(l, Pc, Ec);
   for (int it = 0; it < 8 && !(p[0] <= -err(p)); ++it) {

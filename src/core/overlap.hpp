@@ -22,7 +22,7 @@ namespace pw85 {
 // Stage that decided a verdict (for benchmarks and tests of the filters).
 enum OverlapStage : int {
   kStageTrivial = 0,   // r = 0
-  kStageSpheres = 1,   // separating plane normal to r / segment witness
+  kStageSpheres = 1,   // separating plane normal to r (O11)
   kStageFilter = 2,    // other double-precision certificates (quartic p, Newton)
   kStageExact = 3,     // Sturm sequence in exact integer arithmetic
 };
