@@ -141,11 +141,9 @@ int pw85_overlap(double const r12[PW85_DIM], double const q1[PW85_SYM],
   if (r12 == nullptr || q1 == nullptr || q2 == nullptr) return PW85_ERR_INVALID_ARGUMENT;
   // Hot path: one screening pass (finite, L D L^T pivots, safe range), then
   // the filters with no scaling. Anything else takes the general path.
-  if (pw85::capi::screen_pair_ldl(r12, q1, q2, pw85::kOverlapRangeLo, pw85::kOverlapRangeHi)) {
-    int verdict = -1;
-    int const s = pw85::overlap_in_range(r12, q1, q2, verdict);
-    return s == PW85_OK ? verdict : s;
-  }
+  int verdict = -1;
+  pw85::Status s = pw85::kOk;
+  if (pw85::overlap_screened(r12, q1, q2, verdict, s)) return s == pw85::kOk ? verdict : s;
   return overlap_general(r12, q1, q2);
 }
 

@@ -49,22 +49,6 @@ inline Status validate_pair_ldl(double const *r12, double const *q1, double cons
   return kOk;
 }
 
-// One pass over the arguments for the hot path of pw85_overlap: true when
-// q1 and q2 pass ldl_positive, |r_i| <= hi, |Q_ij| <= hi and max |Q_ij| >= lo
-// (so everything is finite: a NaN entry of a matrix reaches one of its
-// pivots, whose test fails; a NaN in r fails |r_i| <= hi). False does not
-// mean invalid: the caller then takes the general path (validate_pair_ldl,
-// scaling). Pointers must be non-null.
-inline bool screen_pair_ldl(double const *r, double const *q1, double const *q2, double lo,
-                            double hi) noexcept {
-  // A NaN in a matrix is skipped by max_abs and caught by the pivots.
-  double const m1 = max_abs(q1, kSym), m2 = max_abs(q2, kSym);
-  double const qm = m1 > m2 ? m1 : m2;
-  bool const r_ok =
-      (std::fabs(r[0]) <= hi) & (std::fabs(r[1]) <= hi) & (std::fabs(r[2]) <= hi);
-  return r_ok & (qm >= lo) & (qm <= hi) && ldl_positive(q1) && ldl_positive(q2);
-}
-
 // The same kind of screen for pw85_contact_function_method: true when q1 and
 // q2 pass ldl_positive and max |r_i|, max |Q1_ij|, max |Q2_ij| each lie
 // strictly inside (lo, hi) (so r != 0 and everything is finite: a NaN entry

@@ -14,6 +14,17 @@
 #include "magnitude.hpp"
 #include "overlap.hpp"
 #include "overlap_dd.hpp"
+#include "screen.hpp"
+
+// Run-time choice of instruction set for the hot path (x86-64, GCC 12+
+// only: target("arch=x86-64-vN") and __builtin_cpu_supports("x86-64-vN");
+// meson option isa_dispatch=false defines PW85_NO_ISA_DISPATCH).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12 && \
+    !defined(PW85_NO_ISA_DISPATCH)
+#define PW85_OVERLAP_DISPATCH 1
+#else
+#define PW85_OVERLAP_DISPATCH 0
+#endif
 
 namespace pw85 {
 
@@ -247,7 +258,7 @@ struct Coefs {
 // Coefficients of p in the basis s^(4-j) t^j, s = 1 - l, t = l (eq. (O10)):
 // P0 = b0 = det Q1, P1 = b0 + b1 - c0, P2 = b1 + b2 - c1, P3 = b2 + b3 - c2,
 // P4 = b3 = det Q2, with M (mm) the mixed adjugate.
-inline void coefficients(V2 const rr[kSym], SymB const &b1q, SymB const &b2q,
+[[gnu::always_inline]] inline void coefficients(V2 const rr[kSym], SymB const &b1q, SymB const &b2q,
                          Coefs &c) noexcept {
   c.det1 = det_adj(b1q, c.m1);
   c.det2 = det_adj(b2q, c.m2);
@@ -305,7 +316,10 @@ int filters_slow(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, double l, int &s
 
 // The floating-point filters on inputs in the safe range (eq. (O9)):
 // |Q_ij| <= 2^60, |r_i| <= 2^60, r != 0. Returns 0, 1 or kUndecided.
-int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
+// Inlined into the hot path (overlap_in_range); the general path calls the
+// out-of-line copy `filters` below.
+[[gnu::always_inline]] inline int filters_inline(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                                 int &st) noexcept {
   V2 const rb[kDim] = {pos(r[0]), pos(r[1]), pos(r[2])};
   V2 rr[kSym];
   outer(rb, rr);
@@ -360,6 +374,10 @@ int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
   if (!(l > 0.0 && l < 1.0)) l = to_grid(h1 / (h1 + h2));
   if (!(l > 0.0 && l < 1.0)) l = 0.5;
   return filters_slow(r, q1, q2, l, st);
+}
+
+[[gnu::noinline]] int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
+  return filters_inline(r, q1, q2, st);
 }
 
 // The pairs that (O18) leaves open (near contact, or coefficients whose
@@ -580,21 +598,59 @@ Status overlap(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in, int &verd
   return overlap_exact(r_in, q1_in, q2_in, verdict);
 }
 
-Status overlap_in_range(double const *rp, double const *q1p, double const *q2p,
-                        int &verdict) noexcept {
+namespace {
+
+// The hot path, inlined whole (screen -> filters -> exact stage) into each
+// compiled variant below. False: not screened, nothing written.
+[[gnu::always_inline]] inline bool screened_body(double const *rp, double const *q1p,
+                                                 double const *q2p, int &verdict,
+                                                 Status &status) noexcept {
+  if (!screen_pair_ldl(rp, q1p, q2p, kRangeLo, kRangeHi)) return false;
   Vec3 const r = load_vec3(rp);
   Sym3 const q1 = load_sym3(q1p), q2 = load_sym3(q2p);
+  status = kOk;
   if (r[0] == 0.0 && r[1] == 0.0 && r[2] == 0.0) {
     verdict = 1;
-    return kOk;
+    return true;
   }
   int st;
-  int const v = filters(r, q1, q2, st);
-  if (v != kUndecided) {
+  int const v = filters_inline(r, q1, q2, st);
+  if (v != kUndecided)
     verdict = v;
-    return kOk;
-  }
-  return overlap_exact(r, q1, q2, verdict);
+  else
+    status = overlap_exact(r, q1, q2, verdict);
+  return true;
+}
+
+#if PW85_OVERLAP_DISPATCH
+// The same code compiled for the x86-64 levels v4 (AVX-512: 32 vector
+// registers, fewer spills of the bounded values) and v3 (AVX2), chosen at
+// run time (docs/overlap.md, "Instruction sets"). Floating-point contraction
+// stays off (ISO C++ mode), so every variant performs the same IEEE
+// operations in the same order: the verdicts do not depend on the variant.
+__attribute__((target("arch=x86-64-v4"))) bool screened_v4(double const *rp,
+                                                            double const *q1p,
+                                                            double const *q2p, int &verdict,
+                                                            Status &status) noexcept {
+  return screened_body(rp, q1p, q2p, verdict, status);
+}
+__attribute__((target("arch=x86-64-v3"))) bool screened_v3(double const *rp,
+                                                            double const *q1p,
+                                                            double const *q2p, int &verdict,
+                                                            Status &status) noexcept {
+  return screened_body(rp, q1p, q2p, verdict, status);
+}
+#endif
+
+}  // namespace
+
+bool overlap_screened(double const *rp, double const *q1p, double const *q2p, int &verdict,
+                      Status &status) noexcept {
+#if PW85_OVERLAP_DISPATCH
+  if (__builtin_cpu_supports("x86-64-v4")) return screened_v4(rp, q1p, q2p, verdict, status);
+  if (__builtin_cpu_supports("x86-64-v3")) return screened_v3(rp, q1p, q2p, verdict, status);
+#endif
+  return screened_body(rp, q1p, q2p, verdict, status);
 }
 
 }  // namespace pw85

@@ -40,11 +40,13 @@ Status overlap(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &verdict,
 constexpr double kOverlapRangeLo = 0x1p-60;
 constexpr double kOverlapRangeHi = 0x1p60;
 
-// overlap() for inputs already known to be finite, positive definite in
-// floating point and in the safe range (the hot path of pw85_overlap; the C
-// layer screens the arguments in one pass). Same results as overlap().
-Status overlap_in_range(double const *r, double const *q1, double const *q2,
-                        int &verdict) noexcept;
+// The hot path of pw85_overlap: screens the arguments in one pass
+// (screen.hpp: finite, L D L^T pivots of Q1 and Q2 positive, magnitudes in
+// the safe range above) and returns false, with nothing written, when they
+// fail it (the caller then validates them and calls overlap()). Otherwise
+// sets status and verdict exactly as overlap() would and returns true.
+bool overlap_screened(double const *r, double const *q1, double const *q2, int &verdict,
+                      Status &status) noexcept;
 
 // The exact stage alone (no filter): same contract as overlap().
 Status overlap_exact(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,

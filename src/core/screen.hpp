@@ -1,0 +1,65 @@
+// The one-pass argument screen of the hot path of pw85_overlap (called from
+// src/core/overlap.cpp so that it is compiled into each instruction-set
+// variant of that path). Shared meaning with src/capi/validate.hpp:
+// ldl_positive there makes the same decisions, one matrix at a time.
+#pragma once
+
+#include <cmath>
+#include <cstring>
+
+namespace pw85 {
+
+// Two-lane helpers (GCC/Clang vector extension, one SSE2 register).
+namespace v2 {
+typedef double D2 __attribute__((vector_size(16)));
+typedef long long I2 __attribute__((vector_size(16)));
+inline D2 load(double const *p) noexcept {
+  D2 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline D2 abs(D2 x) noexcept {
+  return reinterpret_cast<D2>(reinterpret_cast<I2>(x) & I2{0x7fffffffffffffffLL, 0x7fffffffffffffffLL});
+}
+inline D2 max(D2 a, D2 b) noexcept { return a > b ? a : b; }  // NaN in a: b
+inline D2 lo_lanes(D2 a, D2 b) noexcept { return __builtin_shuffle(a, b, I2{0, 2}); }
+inline D2 hi_lanes(D2 a, D2 b) noexcept { return __builtin_shuffle(a, b, I2{1, 3}); }
+}  // namespace v2
+
+// One pass over the arguments of pw85_overlap: true when q1 and q2 pass the
+// L D L^T test of ldl_positive (src/capi/validate.hpp: all pivots > 0 and
+// finite), |r_i| <= hi, |Q_ij| <= hi and max |Q_ij| >= lo; so everything is
+// finite (a NaN entry of a matrix reaches one of its pivots, whose test
+// fails; a NaN in r fails |r_i| <= hi). The two matrices sit side by side in
+// the two lanes, each lane performing exactly the scalar operations of
+// ldl_positive (same decisions), with one combined test at the end instead
+// of an early exit per pivot. False does not mean invalid: the caller then
+// takes the general path (validation, scaling). Pointers must be non-null.
+inline bool screen_pair_ldl(double const *r, double const *q1, double const *q2, double lo,
+                            double hi) noexcept {
+  using v2::D2;
+  D2 const a01 = v2::load(q1), a23 = v2::load(q1 + 2), a45 = v2::load(q1 + 4);
+  D2 const b01 = v2::load(q2), b23 = v2::load(q2 + 2), b45 = v2::load(q2 + 4);
+  // max |Q_ij| over both matrices. A NaN in a matrix may be skipped here;
+  // it reaches a pivot below, whose test fails.
+  D2 const m = v2::max(v2::max(v2::max(v2::abs(a01), v2::abs(a23)), v2::max(v2::abs(a45), v2::abs(b01))),
+                       v2::max(v2::abs(b23), v2::abs(b45)));
+  double const qm = m[0] > m[1] ? m[0] : m[1];
+  bool const r_ok =
+      (std::fabs(r[0]) <= hi) & (std::fabs(r[1]) <= hi) & (std::fabs(r[2]) <= hi);
+  // L D L^T pivots of ldl_positive, both matrices at once. A pivot <= 0 (or
+  // NaN) makes the later ones Inf or NaN; the tests are combined at the end.
+  D2 const x0 = v2::lo_lanes(a01, b01), x1 = v2::hi_lanes(a01, b01);
+  D2 const x2 = v2::lo_lanes(a23, b23), x3 = v2::hi_lanes(a23, b23);
+  D2 const x4 = v2::lo_lanes(a45, b45), x5 = v2::hi_lanes(a45, b45);
+  D2 const i0 = 1.0 / x0;
+  D2 const l1 = x1 * i0, l2 = x2 * i0;
+  D2 const d1 = x3 - l1 * x1;
+  D2 const e = x4 - l2 * x1;
+  D2 const d2 = x5 - l2 * x2 - (e / d1) * e;
+  D2 const big{0x1.fffffffffffffp1023, 0x1.fffffffffffffp1023};
+  v2::I2 const ok = (x0 > 0.0) & (d1 > 0.0) & (d2 > 0.0) & (d2 <= big);
+  return r_ok & (qm >= lo) & (qm <= hi) & ((ok[0] & ok[1]) != 0);
+}
+
+}  // namespace pw85
