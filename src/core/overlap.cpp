@@ -316,8 +316,8 @@ int filters_slow(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, double l, int &s
 
 // The floating-point filters on inputs in the safe range (eq. (O9)):
 // |Q_ij| <= 2^60, |r_i| <= 2^60, r != 0. Returns 0, 1 or kUndecided.
-// Inlined into the hot path (overlap_in_range); the general path calls the
-// out-of-line copy `filters` below.
+// Inlined into the hot path (screened_body, compiled once per instruction
+// set); the general path calls the out-of-line copy `filters` below.
 [[gnu::always_inline]] inline int filters_inline(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                                                  int &st) noexcept {
   V2 const rb[kDim] = {pos(r[0]), pos(r[1]), pos(r[2])};

@@ -47,8 +47,9 @@ inline bool screen_pair_ldl(double const *r, double const *q1, double const *q2,
   double const qm = m[0] > m[1] ? m[0] : m[1];
   bool const r_ok =
       (std::fabs(r[0]) <= hi) & (std::fabs(r[1]) <= hi) & (std::fabs(r[2]) <= hi);
-  // L D L^T pivots of ldl_positive, both matrices at once. A pivot <= 0 (or
-  // NaN) makes the later ones Inf or NaN; the tests are combined at the end.
+  // L D L^T pivots of ldl_positive, both matrices at once, computed whatever
+  // the earlier pivots were (ldl_positive stops at the first pivot <= 0; here
+  // that pivot's test makes the combined result false all the same).
   D2 const x0 = v2::lo_lanes(a01, b01), x1 = v2::hi_lanes(a01, b01);
   D2 const x2 = v2::lo_lanes(a23, b23), x3 = v2::hi_lanes(a23, b23);
   D2 const x4 = v2::lo_lanes(a45, b45), x5 = v2::hi_lanes(a45, b45);
