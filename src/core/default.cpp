@@ -25,9 +25,10 @@
 #include <cmath>
 
 #include "contact.hpp"
-#include "f_dd.hpp"
-#include "newton.hpp"
 #include "f_adj.hpp"
+#include "f_dd.hpp"
+#include "isa.hpp"
+#include "newton.hpp"
 
 namespace pw85 {
 
@@ -46,10 +47,13 @@ constexpr double kDDModelGap = 0x1p-40;
 constexpr double kDDSlopeRel = 0x1p-10;
 constexpr int kDDMaxNewton = 6;
 constexpr int kDDMaxBisect = 80;
-}  // namespace
 
-Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                       MethodResult &res) noexcept {
+// The whole method, inlined into one function per instruction-set level
+// (contact_default below). Its hot part, the start and the adjugate
+// iteration of step 1, is inline (start.hpp, f_adj.hpp) and so compiled for
+// that level; steps 2-4 call the baseline code of newton.cpp and f_dd.hpp.
+PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                       MethodResult &res) noexcept {
   res.iterations = 0;
   Sym3 const d = difference(q2, q1);
   // Step 1: Halley iteration with adjugate evaluations (f_adj.hpp).
@@ -246,6 +250,28 @@ Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   // last bisection point, an end of [lo, hi]; f(best) >= f(last).
   res.mu2_error = rel_dd * best.f + std::fabs(fd.df) * (hi - lo);
   return res.mu2_error <= kDefaultRelAccuracy * res.mu2 ? kOk : kInaccurate;
+}
+
+#if PW85_ISA_DISPATCH
+// x86-64-v4 (AVX-512: 32 vector registers, fewer spills) variant, chosen at
+// run time; no contraction, so the same IEEE operations in the same order
+// as the baseline (docs/methods.md, "Instruction sets"). A v3 (AVX2) variant
+// measured no faster than the baseline and is not built.
+__attribute__((target("arch=x86-64-v4"))) Status default_v4(Vec3 const &r, Sym3 const &q1,
+                                                             Sym3 const &q2,
+                                                             MethodResult &res) noexcept {
+  return default_body(r, q1, q2, res);
+}
+#endif
+
+}  // namespace
+
+Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                       MethodResult &res) noexcept {
+#if PW85_ISA_DISPATCH
+  if (__builtin_cpu_supports("x86-64-v4")) return default_v4(r, q1, q2, res);
+#endif
+  return default_body(r, q1, q2, res);
 }
 
 }  // namespace pw85

@@ -7,13 +7,8 @@
 #pragma once
 
 #include "dd.hpp"
+#include "isa.hpp"
 #include "sym3.hpp"
-
-#if defined(__GNUC__)
-#define PW85_ALWAYS_INLINE inline __attribute__((always_inline))
-#else
-#define PW85_ALWAYS_INLINE inline
-#endif
 
 namespace pw85 {
 

@@ -2,18 +2,10 @@
 #pragma once
 
 #include "f_ldl.hpp"
+#include "start.hpp"
 #include "sym3.hpp"
 
 namespace pw85 {
-
-// Starting point lambda0 = h1 / (h1 + h2), h_i = (r^T Q_i r)^(1/2)
-// (docs/methods.md, eq. (M7)); the fallback of fixed_point_start.
-double newton_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept;
-
-// Starting point of DEFAULT, NEWTON and RATIONAL: three steps of the fixed point
-// lambda = h1(n) / (h1(n) + h2(n)), n = Q(lambda)^{-1} r, from lambda = 1/2
-// (docs/methods.md, eq. (M19)); (M7) when that fails.
-double fixed_point_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept;
 
 struct NewtonState {
   FEval e;        // last successful evaluation (e.f untouched if none)

@@ -11,20 +11,11 @@
 #include <cstdint>
 #include <cstring>
 
+#include "isa.hpp"
 #include "magnitude.hpp"
 #include "overlap.hpp"
 #include "overlap_dd.hpp"
 #include "screen.hpp"
-
-// Run-time choice of instruction set for the hot path (x86-64, GCC 12+
-// only: target("arch=x86-64-vN") and __builtin_cpu_supports("x86-64-vN");
-// meson option isa_dispatch=false defines PW85_NO_ISA_DISPATCH).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12 && \
-    !defined(PW85_NO_ISA_DISPATCH)
-#define PW85_OVERLAP_DISPATCH 1
-#else
-#define PW85_OVERLAP_DISPATCH 0
-#endif
 
 namespace pw85 {
 
@@ -622,7 +613,7 @@ namespace {
   return true;
 }
 
-#if PW85_OVERLAP_DISPATCH
+#if PW85_ISA_DISPATCH
 // The same code compiled for the x86-64 levels v4 (AVX-512: 32 vector
 // registers, fewer spills of the bounded values) and v3 (AVX2), chosen at
 // run time (docs/overlap.md, "Instruction sets"). Floating-point contraction
@@ -646,7 +637,7 @@ __attribute__((target("arch=x86-64-v3"))) bool screened_v3(double const *rp,
 
 bool overlap_screened(double const *rp, double const *q1p, double const *q2p, int &verdict,
                       Status &status) noexcept {
-#if PW85_OVERLAP_DISPATCH
+#if PW85_ISA_DISPATCH
   if (__builtin_cpu_supports("x86-64-v4")) return screened_v4(rp, q1p, q2p, verdict, status);
   if (__builtin_cpu_supports("x86-64-v3")) return screened_v3(rp, q1p, q2p, verdict, status);
 #endif

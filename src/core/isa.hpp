@@ -1,0 +1,22 @@
+// Compiler helpers for the hot paths that are compiled for several x86-64
+// levels and chosen at run time (docs/overlap.md and docs/methods.md,
+// "Instruction sets"): target("arch=x86-64-vN") functions wrap one
+// always-inline body, so that everything the body inlines is compiled for
+// that level; __builtin_cpu_supports("x86-64-vN") chooses. GCC 12+ on x86-64
+// only; the meson option isa_dispatch=false defines PW85_NO_ISA_DISPATCH.
+// Floating-point contraction stays off (ISO C++ mode), so every variant
+// performs the same IEEE operations in the same order.
+#pragma once
+
+#if defined(__GNUC__)
+#define PW85_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define PW85_ALWAYS_INLINE inline
+#endif
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12 && \
+    !defined(PW85_NO_ISA_DISPATCH)
+#define PW85_ISA_DISPATCH 1
+#else
+#define PW85_ISA_DISPATCH 0
+#endif
