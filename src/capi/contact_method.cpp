@@ -53,8 +53,9 @@ PW85_ALWAYS_INLINE int entry_body(double const *r12, double const *q1, double co
 
 #if PW85_ISA_DISPATCH
 // The entry compiled for x86-64-v4 as well (docs/methods.md, "Instruction
-// sets"): measured 8-10 ns per call faster than the baseline compile of the
-// same code on this machine, with identical results (no contraction).
+// sets"): together with the v4 variant of DEFAULT (default.cpp) 8-13 ns
+// per DEFAULT call faster on this machine (neither alone measured faster),
+// with identical results (-ffp-contract=off, src/meson.build).
 __attribute__((target("arch=x86-64-v4"))) int entry_v4(double const *r12, double const *q1,
                                                         double const *q2, int method,
                                                         pw85_result *res) noexcept {

@@ -254,8 +254,9 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
 
 #if PW85_ISA_DISPATCH
 // x86-64-v4 (AVX-512: 32 vector registers, fewer spills) variant, chosen at
-// run time; no contraction, so the same IEEE operations in the same order
-// as the baseline (docs/methods.md, "Instruction sets"). A v3 (AVX2) variant
+// run time; no contraction (-ffp-contract=off, src/meson.build), so the same
+// IEEE operations in the same order as the baseline (docs/methods.md,
+// "Instruction sets"). A v3 (AVX2) variant
 // measured no faster than the baseline and is not built.
 __attribute__((target("arch=x86-64-v4"))) Status default_v4(Vec3 const &r, Sym3 const &q1,
                                                              Sym3 const &q2,

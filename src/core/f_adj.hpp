@@ -33,8 +33,8 @@ struct AdjEval {
 // d/dlambda Q^{-1} = -Q^{-1} D Q^{-1}); f = p phi with p = lambda (1 - lambda)
 // by Leibniz's rule (p' = 1 - 2 lambda, p'' = -2), eq. (M18):
 //   f'''' = p phi'''' + 4 p' phi''' - 12 phi''.
-PW85_ALWAYS_INLINE bool f_eval_adj(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                       Sym3 const &d, AdjEval &e) noexcept {
+PW85_ALWAYS_INLINE bool f_eval_adj(double lambda, Vec3 const &r, Sym3 const &q1,
+                                   Sym3 const &q2, Sym3 const &d, AdjEval &e) noexcept {
   e.lambda = lambda;
   e.q = interpolate(q1, q2, lambda);
   Sym3 const &q = e.q;
@@ -66,7 +66,7 @@ PW85_ALWAYS_INLINE bool f_eval_adj(double lambda, Vec3 const &r, Sym3 const &q1,
 // entry, relative to the sum of the absolute values of its two products), of
 // det and of the products adj r / det.
 PW85_ALWAYS_INLINE Vec3 adj_error(AdjEval const &e, Vec3 const &r, Sym3 const &q1,
-                      Sym3 const &q2) noexcept {
+                                  Sym3 const &q2) noexcept {
   constexpr double u = 0x1p-53;
   Sym3 const &q = e.q;
   Sym3 qa;

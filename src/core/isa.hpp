@@ -4,8 +4,11 @@
 // always-inline body, so that everything the body inlines is compiled for
 // that level; __builtin_cpu_supports("x86-64-vN") chooses. GCC 12+ on x86-64
 // only; the meson option isa_dispatch=false defines PW85_NO_ISA_DISPATCH.
-// Floating-point contraction stays off (ISO C++ mode), so every variant
-// performs the same IEEE operations in the same order.
+// Floating-point contraction: GCC fuses a * b + c into an FMA by default in
+// C++ (also with -std=c++17) where the target has FMA. src/meson.build turns
+// it off except in overlap.cpp, overlap_dd.cpp and dd_kernels.cpp, so the
+// variants of DEFAULT perform the same IEEE operations as the baseline; the
+// overlap variants contract, which its error bounds allow (docs/overlap.md).
 #pragma once
 
 #if defined(__GNUC__)

@@ -616,9 +616,11 @@ namespace {
 #if PW85_ISA_DISPATCH
 // The same code compiled for the x86-64 levels v4 (AVX-512: 32 vector
 // registers, fewer spills of the bounded values) and v3 (AVX2), chosen at
-// run time (docs/overlap.md, "Instruction sets"). Floating-point contraction
-// stays off (ISO C++ mode), so every variant performs the same IEEE
-// operations in the same order: the verdicts do not depend on the variant.
+// run time (docs/overlap.md, "Instruction sets"). This file is built with
+// GCC's default contraction (src/meson.build), so the v3 and v4 variants
+// fuse some a * b + c into FMAs; every bound of the filters holds for a
+// fused operation too (the product's rounding error is then 0), so the
+// verdicts do not depend on the variant.
 __attribute__((target("arch=x86-64-v4"))) bool screened_v4(double const *rp,
                                                             double const *q1p,
                                                             double const *q2p, int &verdict,
