@@ -38,8 +38,9 @@
 // 2 n^(1/3) (so random pairs range from overlapping to far apart), m random
 // index pairs (i != j), in random order and sorted by (i, j); wall-clock
 // time of pw85_overlap_batch, pw85_contact_function_batch, pw85_contact_batch
-// and of a compute-only control loop (std::threads, no library call: what the
-// shared machine offers at that moment) with nthreads = 1 and 2 (one untimed
+// and of two compute-only control loops (std::threads, no library call: what
+// the shared machine offers at that moment; one latency-bound, one
+// throughput-bound) with nthreads = 1 and 2 (one untimed
 // pass each, then --batch-reps passes alternating 1 and 2 threads), median,
 // min and max over the passes, speed-up = median time (1 thread) / median
 // time (2 threads); a line per function with the ratio of each interleaved
@@ -122,6 +123,38 @@ void axes_from_q(Ell &) {}
 // ---- machine description ---------------------------------------------------
 using bench::cpu_model;
 using bench::run_command;
+
+// Throughput probe: `items` units of 16 rounds over 64 independent
+// multiply-add chains, split over `threads` std::threads; returns the wall
+// time in ns. No memory traffic beyond L1 and no dependency between the
+// chains: the floating-point throughput the vCPUs get is the limit, not
+// latency (the other control, dependent square roots, is latency-bound and
+// can scale where this one does not, e.g. when a vCPU shares a physical
+// core with other work). docs/batch.md reports what it measured.
+double throughput_probe(long long items, int threads, volatile double &sink) {
+  double part[2] = {0.0, 0.0};
+  auto work = [&part, items, threads](int id) {
+    double acc[64];
+    for (int c = 0; c < 64; ++c) acc[c] = 1.0 + c * 1e-3;
+    for (long long k = id; k < items; k += threads)
+      for (int it = 0; it < 16; ++it)
+        for (int c = 0; c < 64; ++c) acc[c] = acc[c] * 0.9999999 + 1e-7;
+    double s = 0.0;
+    for (int c = 0; c < 64; ++c) s += acc[c];
+    part[id] = s;
+  };
+  auto const t0 = std::chrono::steady_clock::now();
+  if (threads == 1) {
+    work(0);
+  } else {
+    std::thread helper(work, 1);
+    work(0);
+    helper.join();
+  }
+  auto const t1 = std::chrono::steady_clock::now();
+  sink = sink + part[0] + part[1];
+  return std::chrono::duration<double, std::nano>(t1 - t0).count();
+}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -462,11 +495,10 @@ int main(int argc, char **argv) {
     std::snprintf(name, sizeof name, "batch/%lld/%lld/%s", batch_n, batch_m,
                   order ? "sorted" : "random");
     // Functions: 0 pw85_overlap_batch, 1 pw85_contact_function_batch,
-    // 2 pw85_contact_batch, 3 control (a compute-only loop split over 1 or
-    // 2 std::threads, no library call: the speed-up the machine itself
-    // offers during the run; on the shared 2-core VM other processes take
-    // a core whenever the load average is above ~0).
-    for (int fn = 0; fn < 4; ++fn) {
+    // 2 pw85_contact_batch, 3 and 4 controls (compute-only loops split over
+    // 1 or 2 std::threads, no library call: the speed-up the machine itself
+    // offers during the run; 3 latency-bound, 4 throughput-bound).
+    for (int fn = 0; fn < 5; ++fn) {
       // One untimed pass (caches, page faults of the outputs, OpenMP thread
       // pool), then reps passes alternating 1 and 2 threads, so that load
       // from other processes on the shared machine hits both alike; each
@@ -490,7 +522,7 @@ int main(int argc, char **argv) {
           else if (fn == 2)
             status[threads] = pw85_contact_batch(batch_n, centres.data(), q.data(), batch_m,
                                                  pairs.data(), ct.data(), st.data(), threads);
-          else {
+          else if (fn == 3) {
             // batch_m iterations of 20 dependent square roots (~50 ns each).
             double part[2] = {0.0, 0.0};
             auto work = [&part, batch_m, threads](int id) {
@@ -510,6 +542,9 @@ int main(int argc, char **argv) {
               helper.join();
             }
             control_sink = control_sink + part[0] + part[1];
+          } else {
+            // Throughput control (throughput_probe), batch_m / 8 units.
+            throughput_probe(batch_m / 8, threads, control_sink);
           }
           auto const t1 = std::chrono::steady_clock::now();
           pass[threads] = std::chrono::duration<double, std::nano>(t1 - t0).count() / (double)batch_m;
@@ -520,7 +555,8 @@ int main(int argc, char **argv) {
       if (getloadavg(load1, 3) < 0) load1[0] = load1[1] = load1[2] = -1.0;
       char const *fname = fn == 0 ? "pw85_overlap_batch"
                           : fn == 1 ? "pw85_contact_function_batch"
-                          : fn == 2 ? "pw85_contact_batch" : "control_compute";
+                          : fn == 2 ? "pw85_contact_batch"
+                          : fn == 3 ? "control_compute" : "control_throughput";
       double const t1thread = median(w[1]);
       for (int threads = 1; threads <= 2; ++threads) {
         double const med = median(w[threads]);
