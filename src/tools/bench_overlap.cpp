@@ -124,16 +124,44 @@ void axes_from_q(Ell &) {}
 using bench::cpu_model;
 using bench::run_command;
 
-// Throughput probe: `items` units of 16 rounds over 64 independent
-// multiply-add chains, split over `threads` std::threads; returns the wall
-// time in ns. No memory traffic beyond L1 and no dependency between the
-// chains: the floating-point throughput the vCPUs get is the limit, not
-// latency (the other control, dependent square roots, is latency-bound and
-// can scale where this one does not, e.g. when a vCPU shares a physical
-// core with other work). docs/batch.md reports what it measured.
-double throughput_probe(long long items, int threads, volatile double &sink) {
+// The control loops of the batch rows: compute only, no library call, split
+// over 1 or 2 std::threads (work(0) here, work(1) on a helper thread).
+template <class Work>
+void split_over_threads(int threads, Work const &work) {
+  if (threads == 1) {
+    work(0);
+  } else {
+    std::thread helper(work, 1);
+    work(0);
+    helper.join();
+  }
+}
+
+// Latency-bound control: `items` iterations of 20 dependent square roots
+// (~50 ns each).
+void control_latency(long long items, int threads, volatile double &sink) {
   double part[2] = {0.0, 0.0};
-  auto work = [&part, items, threads](int id) {
+  split_over_threads(threads, [&part, items, threads](int id) {
+    double s = 0.0;
+    for (long long k = id; k < items; k += threads) {
+      double x = (double)k;
+      for (int it = 0; it < 20; ++it) x = std::sqrt(x + 1.0);
+      s += x;
+    }
+    part[id] = s;
+  });
+  sink = sink + part[0] + part[1];
+}
+
+// Throughput-bound control: `items` units of 16 rounds over 64 independent
+// multiply-add chains. No memory traffic beyond L1 and no dependency between
+// the chains: the floating-point throughput the vCPUs get is the limit, not
+// latency (the latency-bound control can scale where this one does not,
+// e.g. when a vCPU shares a physical core with other work). docs/batch.md
+// reports what it measured.
+void control_throughput(long long items, int threads, volatile double &sink) {
+  double part[2] = {0.0, 0.0};
+  split_over_threads(threads, [&part, items, threads](int id) {
     double acc[64];
     for (int c = 0; c < 64; ++c) acc[c] = 1.0 + c * 1e-3;
     for (long long k = id; k < items; k += threads)
@@ -142,18 +170,8 @@ double throughput_probe(long long items, int threads, volatile double &sink) {
     double s = 0.0;
     for (int c = 0; c < 64; ++c) s += acc[c];
     part[id] = s;
-  };
-  auto const t0 = std::chrono::steady_clock::now();
-  if (threads == 1) {
-    work(0);
-  } else {
-    std::thread helper(work, 1);
-    work(0);
-    helper.join();
-  }
-  auto const t1 = std::chrono::steady_clock::now();
+  });
   sink = sink + part[0] + part[1];
-  return std::chrono::duration<double, std::nano>(t1 - t0).count();
 }
 
 double median(std::vector<double> v) {
@@ -522,30 +540,10 @@ int main(int argc, char **argv) {
           else if (fn == 2)
             status[threads] = pw85_contact_batch(batch_n, centres.data(), q.data(), batch_m,
                                                  pairs.data(), ct.data(), st.data(), threads);
-          else if (fn == 3) {
-            // batch_m iterations of 20 dependent square roots (~50 ns each).
-            double part[2] = {0.0, 0.0};
-            auto work = [&part, batch_m, threads](int id) {
-              double s = 0.0;
-              for (long long k = id; k < batch_m; k += threads) {
-                double x = (double)k;
-                for (int it = 0; it < 20; ++it) x = std::sqrt(x + 1.0);
-                s += x;
-              }
-              part[id] = s;
-            };
-            if (threads == 1) {
-              work(0);
-            } else {
-              std::thread helper(work, 1);
-              work(0);
-              helper.join();
-            }
-            control_sink = control_sink + part[0] + part[1];
-          } else {
-            // Throughput control (throughput_probe), batch_m / 8 units.
-            throughput_probe(batch_m / 8, threads, control_sink);
-          }
+          else if (fn == 3)
+            control_latency(batch_m, threads, control_sink);
+          else
+            control_throughput(batch_m / 8, threads, control_sink);
           auto const t1 = std::chrono::steady_clock::now();
           pass[threads] = std::chrono::duration<double, std::nano>(t1 - t0).count() / (double)batch_m;
           if (rep >= 0) w[threads].push_back(pass[threads]);
