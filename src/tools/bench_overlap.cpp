@@ -137,8 +137,8 @@ void split_over_threads(int threads, Work const &work) {
   }
 }
 
-// Latency-bound control: `items` iterations of 20 dependent square roots
-// (~50 ns each).
+// Latency-bound control (row "control_compute"): `items` iterations of 20
+// dependent square roots (~50 ns each).
 void control_latency(long long items, int threads, volatile double &sink) {
   double part[2] = {0.0, 0.0};
   split_over_threads(threads, [&part, items, threads](int id) {
@@ -153,12 +153,11 @@ void control_latency(long long items, int threads, volatile double &sink) {
   sink = sink + part[0] + part[1];
 }
 
-// Throughput-bound control: `items` units of 16 rounds over 64 independent
+// Throughput-bound control (row "control_throughput"): `items` units of 16 rounds over 64 independent
 // multiply-add chains. No memory traffic beyond L1 and no dependency between
 // the chains: the floating-point throughput the vCPUs get is the limit, not
-// latency (the latency-bound control can scale where this one does not,
-// e.g. when a vCPU shares a physical core with other work). docs/batch.md
-// reports what it measured.
+// latency. The two controls' speed-ups can differ in one run (docs/batch.md
+// reports what they measured).
 void control_throughput(long long items, int threads, volatile double &sink) {
   double part[2] = {0.0, 0.0};
   split_over_threads(threads, [&part, items, threads](int id) {
