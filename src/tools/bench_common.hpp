@@ -70,6 +70,19 @@ inline void q_from_axes(double const a[3], double const rot[3][3], double q[6]) 
     }
 }
 
+// Centre offset of a random pair: uniformly random direction, length
+// reach 10^U(-2, -2 + span) with reach = a1max + a2max (the sum of the
+// largest semi-axes). bench_contact's scenes (issue 7) use span = kContactSpan
+// (from deep overlap to 3.2 times reach); bench_overlap times those same pairs
+// and its older, wider scenes (span 3: up to 10 times reach).
+constexpr double kContactSpan = 2.5;
+inline void random_offset(Rng &g, double reach, double span, double r[3]) {
+  double dir[3] = {g.normal(), g.normal(), g.normal()};
+  double const nd = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+  double const dist = reach * std::pow(10.0, -2.0 + span * g.uniform());
+  for (int k = 0; k < 3; ++k) r[k] = dist * dir[k] / nd;
+}
+
 // Output of a shell command (first lines, trailing newlines removed).
 inline std::string run_command(char const *cmd) {
   std::string out;

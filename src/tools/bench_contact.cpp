@@ -245,10 +245,7 @@ int main(int argc, char **argv) {
       double am1, am2;
       random_ellipsoid(g, bounds[c][0], bounds[c][1], p.q1, am1);
       random_ellipsoid(g, bounds[c][0], bounds[c][1], p.q2, am2);
-      double dir[3] = {g.normal(), g.normal(), g.normal()};
-      double const nd = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-      double const dist = (am1 + am2) * std::pow(10.0, -2.0 + 2.5 * g.uniform());
-      for (int k = 0; k < 3; ++k) p.r[k] = dist * dir[k] / nd;
+      bench::random_offset(g, am1 + am2, bench::kContactSpan, p.r);
       p.refq = reference_mu2(p);
       p.ref = (double)p.refq;
     }
