@@ -2,7 +2,8 @@
 // NOT a test: built by meson, never run by `meson test`, not installed.
 //
 //   bench_overlap [--n N] [--reps R] [--seed S] [--ref FILE]
-//                 [--batch-n N] [--batch-m M] [--batch-reps R] [--no-batch] OUT.csv
+//                 [--batch-n N] [--batch-m M] [--batch-reps R] [--batch-min-ms T]
+//                 [--no-batch] [--overlap-only] OUT.csv
 //
 // Scenes (one row of the table per scene and function):
 //  - contact_scene/class0..3: the scenes of bench_contact (issue 7): N
@@ -18,7 +19,7 @@
 //    (column n_checked).
 //  - gen/class0..3: as contact_scene but |r12| = (a1max + a2max) 10^U(-2, 1)
 //    (up to 10 times the sum of the largest semi-axes: more far-apart
-//    pairs), the generated scenes of the runs before 2026-11-22.
+//    pairs), the generated scenes of the runs of earlier sessions (docs/overlap.md).
 //  - ref/contact/class0..3 and ref/near_contact: the groups /contact (per
 //    class) and /near_contact (|mu2 - 1| log-uniform in [1e-15, 1e-2]) of the
 //    reference data file (default: PW85_REF_DATA_PATH, i.e.
@@ -49,7 +50,9 @@
 // min and max over the passes, speed-up = median time (1 thread) / median
 // time (2 threads); a line per function with the ratio of each interleaved
 // pair of passes, their median, the ratio of the fastest passes and the load
-// averages before and after (docs/batch.md).
+// averages before and after (docs/batch.md). --batch-min-ms T: each timed
+// pass repeats the call until the one-thread pass lasts at least T ms
+// (measured on the untimed pass; default 0: one call per pass).
 #include <algorithm>
 #include <chrono>
 #include <cinttypes>
