@@ -54,6 +54,7 @@
 // pass repeats the call until the one-thread pass lasts at least T ms
 // (measured on the untimed pass; default 0: one call per pass).
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cinttypes>
 #include <cmath>
@@ -206,6 +207,56 @@ double thread_ns() {
   timespec t;
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return (double)t.tv_sec * 1e9 + (double)t.tv_nsec;
+}
+
+// The library's own work without OpenMP (row "control_pairs", timed in the
+// same repetitions as pw85_overlap_batch, passes interleaved): the one-pair
+// pw85_overlap on the batch's pairs, split over 1 or 2 std::threads that
+// take chunks of 256 pairs from a shared counter (as the batch's dynamic
+// schedule does) and prefetch pair k + 16 (as the batch does). Each thread
+// also records its thread CPU time and pair count, so a 2-thread pass shows
+// whether both vCPUs ran this code at the one-thread rate (docs/batch.md,
+// "What the machine offers").
+struct PairsThreadStat {
+  long long pairs = 0;
+  double cpu_ns = 0.0;
+};
+
+void control_pairs(long long n, double const *centres, double const *q, long long m,
+                   long long const *pairs, int *out, int threads, PairsThreadStat stat[2]) {
+  constexpr long long kChunk = 256, kAhead = 16;
+  std::atomic<long long> next{0};
+  split_over_threads(threads, [&, n](int id) {
+    double const c0 = thread_ns();
+    long long done = 0;
+    for (;;) {
+      long long const k0 = next.fetch_add(kChunk, std::memory_order_relaxed);
+      if (k0 >= m) break;
+      long long const k1 = std::min(m, k0 + kChunk);
+      for (long long k = k0; k < k1; ++k) {
+        if (k + kAhead < m) {
+          long long const a = pairs[2 * (k + kAhead)], b = pairs[2 * (k + kAhead) + 1];
+          __builtin_prefetch(centres + 3 * a);
+          __builtin_prefetch(centres + 3 * b);
+          __builtin_prefetch(q + 6 * a);
+          __builtin_prefetch(q + 6 * a + 5);
+          __builtin_prefetch(q + 6 * b);
+          __builtin_prefetch(q + 6 * b + 5);
+        }
+        long long const i = pairs[2 * k], j = pairs[2 * k + 1];
+        if (i < 0 || j < 0 || i >= n || j >= n) {
+          out[k] = PW85_ERR_INVALID_ARGUMENT;
+          continue;
+        }
+        double const r[3] = {centres[3 * j] - centres[3 * i], centres[3 * j + 1] - centres[3 * i + 1],
+                             centres[3 * j + 2] - centres[3 * i + 2]};
+        out[k] = pw85_overlap(r, q + 6 * i, q + 6 * j);
+      }
+      done += k1 - k0;
+    }
+    stat[id].pairs = done;
+    stat[id].cpu_ns = thread_ns() - c0;
+  });
 }
 
 // ---- reference data ----------------------------------------------------------
@@ -550,88 +601,152 @@ int main(int argc, char **argv) {
     // Functions: 0 pw85_overlap_batch, 1 pw85_contact_function_batch,
     // 2 pw85_contact_batch, 3 and 4 controls (compute-only loops split over
     // 1 or 2 std::threads, no library call: the speed-up the machine itself
-    // offers during the run; 3 latency-bound, 4 throughput-bound).
-    for (int fn = 0; fn < 5; ++fn) {
-      if (overlap_only && (fn == 1 || fn == 2)) continue;  // contact batch calls
+    // offers during the run; 3 latency-bound, 4 throughput-bound), 5
+    // control_pairs (the one-pair pw85_overlap over the same pairs on
+    // std::threads, no OpenMP). Each batch function is timed in the same
+    // repetitions as control_throughput (and pw85_overlap_batch also as
+    // control_pairs), passes interleaved in the order of the group, so that a
+    // disturbance of the machine shows in the controls in the same
+    // repetition (docs/batch.md, "What the machine offers").
+    std::vector<int> ov_control(batch_m);
+    int const groups[4][3] = {{0, 5, 4}, {1, 4, -1}, {2, 4, -1}, {3, -1, -1}};
+    for (auto const &group : groups) {
+      if (overlap_only && (group[0] == 1 || group[0] == 2)) continue;  // contact batch calls
+      int const nfn = group[1] < 0 ? 1 : group[2] < 0 ? 2 : 3;
       // One untimed pass (caches, page faults of the outputs, OpenMP thread
       // pool), then reps passes alternating 1 and 2 threads, so that load
       // from other processes on the shared machine hits both alike; each
       // (1-thread, 2-thread) pair of consecutive passes gives one ratio.
-      std::vector<double> w[3], ratios;
-      std::vector<double> out2(fn == 1 ? 2 * batch_m : 0);
-      int status[3] = {0, 0, 0};
+      std::vector<double> w[3][3], ratios[3];
+      std::vector<std::string> thread_rates;  // control_pairs, 2-thread passes
+      std::vector<double> out2(group[0] == 1 ? 2 * batch_m : 0);
+      int status[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
       double load0[3] = {0, 0, 0}, load1[3] = {0, 0, 0};
       if (getloadavg(load0, 3) < 0) load0[0] = load0[1] = load0[2] = -1.0;
       volatile double control_sink = 0.0;
-      int calls = 1;  // consecutive calls per timed pass, set after the untimed pass
+      int calls[3] = {1, 1, 1};  // consecutive calls per timed pass, set after the untimed pass
       for (int rep = -1; rep < batch_reps; ++rep) {
-        double pass[3] = {0, 0, 0};
-        for (int threads = 1; threads <= 2; ++threads) {
-          auto const t0 = std::chrono::steady_clock::now();
-          for (int call = 0; call < calls; ++call) {
-            if (fn == 0)
-              status[threads] = pw85_overlap_batch(batch_n, centres.data(), q.data(), batch_m,
-                                                   pairs.data(), ov.data(), st.data(), threads);
-            else if (fn == 1)
-              status[threads] = pw85_contact_function_batch(batch_n, centres.data(), q.data(), batch_m,
-                                                            pairs.data(), out2.data(), st.data(), threads);
-            else if (fn == 2)
-              status[threads] = pw85_contact_batch(batch_n, centres.data(), q.data(), batch_m,
-                                                   pairs.data(), ct.data(), st.data(), threads);
-            else if (fn == 3)
-              control_latency(batch_m, threads, control_sink);
-            else
-              control_throughput(2 * batch_m, threads, control_sink);  // ~25 ms on one thread
+        for (int f = 0; f < nfn; ++f) {
+          int const fn = group[f];
+          double pass[3] = {0, 0, 0};
+          for (int threads = 1; threads <= 2; ++threads) {
+            PairsThreadStat stat[2];
+            auto const t0 = std::chrono::steady_clock::now();
+            for (int call = 0; call < calls[f]; ++call) {
+              int &stt = status[f][threads];
+              if (fn == 0)
+                stt = pw85_overlap_batch(batch_n, centres.data(), q.data(), batch_m, pairs.data(),
+                                         ov.data(), st.data(), threads);
+              else if (fn == 1)
+                stt = pw85_contact_function_batch(batch_n, centres.data(), q.data(), batch_m,
+                                                  pairs.data(), out2.data(), st.data(), threads);
+              else if (fn == 2)
+                stt = pw85_contact_batch(batch_n, centres.data(), q.data(), batch_m, pairs.data(),
+                                         ct.data(), st.data(), threads);
+              else if (fn == 3)
+                control_latency(batch_m, threads, control_sink);
+              else if (fn == 4)
+                control_throughput(2 * batch_m, threads, control_sink);  // ~25 ms on one thread
+              else
+                control_pairs(batch_n, centres.data(), q.data(), batch_m, pairs.data(),
+                              ov_control.data(), threads, stat);
+            }
+            auto const t1 = std::chrono::steady_clock::now();
+            pass[threads] = std::chrono::duration<double, std::nano>(t1 - t0).count() /
+                            ((double)batch_m * calls[f]);
+            if (rep >= 0) w[f][threads].push_back(pass[threads]);
+            if (fn == 5 && threads == 2 && rep >= 0) {
+              // Thread CPU ns per pair of each thread (last call of the pass).
+              char buf[48];
+              std::snprintf(buf, sizeof buf, " %.1f/%.1f",
+                            stat[0].cpu_ns / (double)std::max(1LL, stat[0].pairs),
+                            stat[1].cpu_ns / (double)std::max(1LL, stat[1].pairs));
+              thread_rates.push_back(buf);
+            }
+            if (fn == 5 && threads == 1 && rep >= 0) {
+              char buf[32];
+              std::snprintf(buf, sizeof buf, " [1thr %.1f]",
+                            stat[0].cpu_ns / (double)std::max(1LL, stat[0].pairs));
+              thread_rates.push_back(buf);
+            }
           }
-          auto const t1 = std::chrono::steady_clock::now();
-          pass[threads] = std::chrono::duration<double, std::nano>(t1 - t0).count() /
-                          ((double)batch_m * calls);
-          if (rep >= 0) w[threads].push_back(pass[threads]);
+          if (rep >= 0) ratios[f].push_back(pass[1] / pass[2]);
+          // Passes of at least batch_min_ms (one thread): a single call of the
+          // cheapest function lasts only ~10-30 ms (docs/batch.md).
+          if (rep < 0)
+            calls[f] = std::max(1, (int)std::ceil(batch_min_ms * 1e6 / (pass[1] * (double)batch_m)));
         }
-        if (rep >= 0) ratios.push_back(pass[1] / pass[2]);
-        // Passes of at least batch_min_ms (one thread): a single call of the
-        // cheapest function lasts only ~10-30 ms, a window in which this
-        // shared VM's two-thread throughput is not stable (docs/batch.md).
-        if (rep < 0)
-          calls = std::max(1, (int)std::ceil(batch_min_ms * 1e6 / (pass[1] * (double)batch_m)));
       }
       if (getloadavg(load1, 3) < 0) load1[0] = load1[1] = load1[2] = -1.0;
-      char const *fname = fn == 0 ? "pw85_overlap_batch"
-                          : fn == 1 ? "pw85_contact_function_batch"
-                          : fn == 2 ? "pw85_contact_batch"
-                          : fn == 3 ? "control_compute" : "control_throughput";
-      double const t1thread = median(w[1]);
-      for (int threads = 1; threads <= 2; ++threads) {
-        double const med = median(w[threads]);
-        char label[64];
-        std::snprintf(label, sizeof label, "%s/%dthr", fname, threads);
-        double const mn = *std::min_element(w[threads].begin(), w[threads].end());
-        double const mx = *std::max_element(w[threads].begin(), w[threads].end());
-        double const speedup = t1thread / med;
-        std::printf("%-22s %-34s %6lld %7s %9.1f %9.1f %9.1f %6s %5d %7.2f\n", name, label,
-                    batch_m, "-", med, mn, mx, "-", status[threads] != PW85_OK, speedup);
-        std::fprintf(csv, "%s,%s,%lld,0,%.2f,%.2f,%.2f,,%d,%.3f\n", name, label, batch_m, med,
-                     mn, mx, status[threads] != PW85_OK, speedup);
+      for (int f = 0; f < nfn; ++f) {
+        int const fn = group[f];
+        char const *fname = fn == 0 ? "pw85_overlap_batch"
+                            : fn == 1 ? "pw85_contact_function_batch"
+                            : fn == 2 ? "pw85_contact_batch"
+                            : fn == 3 ? "control_compute"
+                            : fn == 4 ? (group[0] == 0   ? "control_throughput[ov]"
+                                         : group[0] == 1 ? "control_throughput[cf]"
+                                                         : "control_throughput[ct]")
+                                      : "control_pairs";
+        double const t1thread = median(w[f][1]);
+        for (int threads = 1; threads <= 2; ++threads) {
+          double const med = median(w[f][threads]);
+          char label[64];
+          std::snprintf(label, sizeof label, "%s/%dthr", fname, threads);
+          double const mn = *std::min_element(w[f][threads].begin(), w[f][threads].end());
+          double const mx = *std::max_element(w[f][threads].begin(), w[f][threads].end());
+          double const speedup = t1thread / med;
+          std::printf("%-22s %-34s %6lld %7s %9.1f %9.1f %9.1f %6s %5d %7.2f\n", name, label,
+                      batch_m, "-", med, mn, mx, "-", status[f][threads] != PW85_OK, speedup);
+          std::fprintf(csv, "%s,%s,%lld,0,%.2f,%.2f,%.2f,,%d,%.3f\n", name, label, batch_m, med,
+                       mn, mx, status[f][threads] != PW85_OK, speedup);
+        }
+        // Spread of the speed-up: the ratio of each interleaved pair of passes,
+        // their median, and the ratio of the fastest passes (the least disturbed).
+        std::string rs;
+        for (double r : ratios[f]) {
+          char buf[16];
+          std::snprintf(buf, sizeof buf, " %.2f", r);
+          rs += buf;
+        }
+        double const best = *std::min_element(w[f][1].begin(), w[f][1].end()) /
+                            *std::min_element(w[f][2].begin(), w[f][2].end());
+        std::printf("  %s (%d call(s) per pass) speed-up per pass:%s; median %.2f, ratio of "
+                    "fastest passes %.2f; load average (1/5/15 min) %.2f %.2f %.2f before, "
+                    "%.2f %.2f %.2f after\n",
+                    fname, calls[f], rs.c_str(), median(ratios[f]), best, load0[0], load0[1],
+                    load0[2], load1[0], load1[1], load1[2]);
+        std::fprintf(csv, "# %s %s (%d call(s) per pass) speed-up per pass:%s; median %.3f; "
+                          "fastest-pass ratio %.3f; loadavg %.2f %.2f %.2f before, %.2f %.2f %.2f after\n",
+                     name, fname, calls[f], rs.c_str(), median(ratios[f]), best, load0[0], load0[1],
+                     load0[2], load1[0], load1[1], load1[2]);
+        if (f > 0) {
+          // The batch function's speed-up over this control's, repetition by
+          // repetition: above ~1, the batch call lost nothing the machine
+          // did not also take from the control.
+          std::vector<double> rel;
+          for (size_t k = 0; k < ratios[0].size() && k < ratios[f].size(); ++k)
+            rel.push_back(ratios[0][k] / ratios[f][k]);
+          std::printf("  speed-up of %s / speed-up of %s, same repetition: median %.2f\n",
+                      group[0] == 0   ? "pw85_overlap_batch"
+                      : group[0] == 1 ? "pw85_contact_function_batch"
+                                      : "pw85_contact_batch",
+                      fname, median(rel));
+          std::fprintf(csv, "# %s speed-up of function %d / speed-up of %s, same repetition: median %.3f\n",
+                       name, group[0], fname, median(rel));
+        }
+        if (fn == 5) {
+          std::string tr;
+          for (auto const &t : thread_rates) tr += t;
+          std::printf("  control_pairs thread CPU ns per pair, per repetition [1 thread] then "
+                      "thread 0/thread 1 of the 2-thread pass:%s\n", tr.c_str());
+          std::fprintf(csv, "# %s control_pairs thread CPU ns per pair ([1 thread] then thread "
+                            "0/thread 1 of the 2-thread pass):%s\n", name, tr.c_str());
+          bool same = true;
+          for (long long k = 0; k < batch_m; ++k) same = same && ov_control[k] == ov[k];
+          if (!same) std::printf("  WARNING: control_pairs verdicts differ from pw85_overlap_batch\n");
+        }
       }
-      // Spread of the speed-up: the ratio of each interleaved pair of passes,
-      // their median, and the ratio of the fastest passes (the least disturbed).
-      std::string rs;
-      for (double r : ratios) {
-        char buf[16];
-        std::snprintf(buf, sizeof buf, " %.2f", r);
-        rs += buf;
-      }
-      double const best = *std::min_element(w[1].begin(), w[1].end()) /
-                          *std::min_element(w[2].begin(), w[2].end());
-      std::printf("  %s (%d call(s) per pass) speed-up per pass:%s; median %.2f, ratio of "
-                  "fastest passes %.2f; load average (1/5/15 min) %.2f %.2f %.2f before, "
-                  "%.2f %.2f %.2f after\n",
-                  fname, calls, rs.c_str(), median(ratios), best, load0[0], load0[1], load0[2],
-                  load1[0], load1[1], load1[2]);
-      std::fprintf(csv, "# %s %s (%d call(s) per pass) speed-up per pass:%s; median %.3f; "
-                        "fastest-pass ratio %.3f; loadavg %.2f %.2f %.2f before, %.2f %.2f %.2f after\n",
-                   name, fname, calls, rs.c_str(), median(ratios), best, load0[0], load0[1], load0[2],
-                   load1[0], load1[1], load1[2]);
       std::fflush(stdout);
     }
     }
