@@ -43,9 +43,13 @@
 // 2 n^(1/3) (so random pairs range from overlapping to far apart), m random
 // index pairs (i != j), in random order and sorted by (i, j); wall-clock
 // time of pw85_overlap_batch, pw85_contact_function_batch, pw85_contact_batch
-// and of two compute-only control loops (std::threads, no library call: what
-// the shared machine offers at that moment; one latency-bound, one
-// throughput-bound) with nthreads = 1 and 2 (one untimed
+// and of control loops on std::threads (what the shared machine offers at
+// that moment): two compute-only loops with no library call (one
+// latency-bound, one throughput-bound; the throughput one is timed in the
+// same repetitions as each batch call, passes interleaved) and control_pairs,
+// the one-pair pw85_overlap over the batch's pairs without OpenMP (timed with
+// pw85_overlap_batch; per-thread CPU ns per pair printed), with nthreads = 1
+// and 2 (one untimed
 // pass each, then --batch-reps passes alternating 1 and 2 threads), median,
 // min and max over the passes, speed-up = median time (1 thread) / median
 // time (2 threads); a line per function with the ratio of each interleaved
