@@ -213,11 +213,13 @@ double thread_ns() {
   return (double)t.tv_sec * 1e9 + (double)t.tv_nsec;
 }
 
-// The library's own work without OpenMP (row "control_pairs", timed in the
-// same repetitions as pw85_overlap_batch, passes interleaved): the one-pair
-// pw85_overlap on the batch's pairs, split over 1 or 2 std::threads that
-// take chunks of 256 pairs from a shared counter (as the batch's dynamic
-// schedule does) and prefetch pair k + 16 (as the batch does). Each thread
+// The library's own work without OpenMP (rows "control_pairs[..]", timed in
+// the same repetitions as the batch call they mirror, passes interleaved):
+// the one-pair function (`one(k, r12, q_i, q_j)`: pw85_overlap,
+// pw85_contact_function or pw85_contact) on the batch's pairs, split over 1
+// or 2 std::threads that take chunks of `chunk` pairs from a shared counter
+// (as the batch's dynamic schedule does) and prefetch pair k + 16 (as the
+// batch does). Each thread
 // also records its thread CPU time and pair count, so a 2-thread pass shows
 // whether both vCPUs ran this code at the one-thread rate (docs/batch.md,
 // "What the machine offers").
@@ -226,17 +228,19 @@ struct PairsThreadStat {
   double cpu_ns = 0.0;
 };
 
+template <class One>
 void control_pairs(long long n, double const *centres, double const *q, long long m,
-                   long long const *pairs, int *out, int threads, PairsThreadStat stat[2]) {
-  constexpr long long kChunk = 256, kAhead = 16;
+                   long long const *pairs, long long chunk, int threads, PairsThreadStat stat[2],
+                   One const &one) {
+  constexpr long long kAhead = 16;
   std::atomic<long long> next{0};
   split_over_threads(threads, [&, n](int id) {
     double const c0 = thread_ns();
     long long done = 0;
     for (;;) {
-      long long const k0 = next.fetch_add(kChunk, std::memory_order_relaxed);
+      long long const k0 = next.fetch_add(chunk, std::memory_order_relaxed);
       if (k0 >= m) break;
-      long long const k1 = std::min(m, k0 + kChunk);
+      long long const k1 = std::min(m, k0 + chunk);
       for (long long k = k0; k < k1; ++k) {
         if (k + kAhead < m) {
           long long const a = pairs[2 * (k + kAhead)], b = pairs[2 * (k + kAhead) + 1];
@@ -248,13 +252,10 @@ void control_pairs(long long n, double const *centres, double const *q, long lon
           __builtin_prefetch(q + 6 * b + 5);
         }
         long long const i = pairs[2 * k], j = pairs[2 * k + 1];
-        if (i < 0 || j < 0 || i >= n || j >= n) {
-          out[k] = PW85_ERR_INVALID_ARGUMENT;
-          continue;
-        }
+        if (i < 0 || j < 0 || i >= n || j >= n) continue;  // none in the benchmark's scene
         double const r[3] = {centres[3 * j] - centres[3 * i], centres[3 * j + 1] - centres[3 * i + 1],
                              centres[3 * j + 2] - centres[3 * i + 2]};
-        out[k] = pw85_overlap(r, q + 6 * i, q + 6 * j);
+        one(k, r, q + 6 * i, q + 6 * j);
       }
       done += k1 - k0;
     }
@@ -606,24 +607,27 @@ int main(int argc, char **argv) {
     // 2 pw85_contact_batch, 3 and 4 controls (compute-only loops split over
     // 1 or 2 std::threads, no library call: the speed-up the machine itself
     // offers during the run; 3 latency-bound, 4 throughput-bound), 5
-    // control_pairs (the one-pair pw85_overlap over the same pairs on
-    // std::threads, no OpenMP). Each batch function is timed in the same
-    // repetitions as control_throughput (and pw85_overlap_batch also as
-    // control_pairs), passes interleaved in the order of the group, so that a
-    // disturbance of the machine shows in the controls in the same
+    // control_pairs[ov] (the one-pair pw85_overlap over the same pairs on
+    // std::threads, no OpenMP), 6 and 7 control_pairs[cf] and [ct] (the same
+    // with pw85_contact_function and pw85_contact). Each batch function is
+    // timed in the same repetitions as its control_pairs and
+    // control_throughput, passes interleaved in the order of the group, so
+    // that a disturbance of the machine shows in the controls in the same
     // repetition (docs/batch.md, "What the machine offers").
     std::vector<int> ov_control(batch_m);
-    int const groups[4][3] = {{0, 5, 4}, {1, 4, -1}, {2, 4, -1}, {3, -1, -1}};
+    int const groups[4][3] = {{0, 5, 4}, {1, 6, 4}, {2, 7, 4}, {3, -1, -1}};
     for (auto const &group : groups) {
       if (overlap_only && (group[0] == 1 || group[0] == 2)) continue;  // contact batch calls
-      int const nfn = group[1] < 0 ? 1 : group[2] < 0 ? 2 : 3;
+      int const nfn = group[1] < 0 ? 1 : 3;
       // One untimed pass (caches, page faults of the outputs, OpenMP thread
       // pool), then reps passes alternating 1 and 2 threads, so that load
       // from other processes on the shared machine hits both alike; each
       // (1-thread, 2-thread) pair of consecutive passes gives one ratio.
       std::vector<double> w[3][3], ratios[3];
       std::vector<std::string> thread_rates;  // control_pairs, 2-thread passes
-      std::vector<double> out2(group[0] == 1 ? 2 * batch_m : 0);
+      std::vector<double> out2(group[0] == 1 ? 2 * batch_m : 0),
+          out2_control(group[0] == 1 ? 2 * batch_m : 0);
+      std::vector<pw85_contact_t> ct_control(group[0] == 2 ? batch_m : 0);
       int status[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
       double load0[3] = {0, 0, 0}, load1[3] = {0, 0, 0};
       if (getloadavg(load0, 3) < 0) load0[0] = load0[1] = load0[2] = -1.0;
@@ -651,15 +655,31 @@ int main(int argc, char **argv) {
                 control_latency(batch_m, threads, control_sink);
               else if (fn == 4)
                 control_throughput(2 * batch_m, threads, control_sink);  // ~25 ms on one thread
+              else if (fn == 5)
+                control_pairs(batch_n, centres.data(), q.data(), batch_m, pairs.data(), 256,
+                              threads, stat,
+                              [&](long long k, double const *r, double const *qi, double const *qj) {
+                                ov_control[k] = pw85_overlap(r, qi, qj);
+                              });
+              else if (fn == 6)
+                control_pairs(batch_n, centres.data(), q.data(), batch_m, pairs.data(), 64,
+                              threads, stat,
+                              [&](long long k, double const *r, double const *qi, double const *qj) {
+                                pw85_contact_function(r, qi, qj, &out2_control[2 * k]);
+                              });
               else
-                control_pairs(batch_n, centres.data(), q.data(), batch_m, pairs.data(),
-                              ov_control.data(), threads, stat);
+                control_pairs(batch_n, centres.data(), q.data(), batch_m, pairs.data(), 64,
+                              threads, stat,
+                              [&](long long k, double const *r, double const *qi, double const *qj) {
+                                pw85_contact(r, qi, qj, &ct_control[k]);
+                              });
             }
             auto const t1 = std::chrono::steady_clock::now();
             pass[threads] = std::chrono::duration<double, std::nano>(t1 - t0).count() /
                             ((double)batch_m * calls[f]);
             if (rep >= 0) w[f][threads].push_back(pass[threads]);
-            if (fn == 5 && threads == 2 && rep >= 0) {
+            bool const pairs_control = fn >= 5;
+            if (pairs_control && threads == 2 && rep >= 0) {
               // Thread CPU ns per pair of each thread (last call of the pass).
               char buf[48];
               std::snprintf(buf, sizeof buf, " %.1f/%.1f",
@@ -667,7 +687,7 @@ int main(int argc, char **argv) {
                             stat[1].cpu_ns / (double)std::max(1LL, stat[1].pairs));
               thread_rates.push_back(buf);
             }
-            if (fn == 5 && threads == 1 && rep >= 0) {
+            if (pairs_control && threads == 1 && rep >= 0) {
               char buf[32];
               std::snprintf(buf, sizeof buf, " [1thr %.1f]",
                             stat[0].cpu_ns / (double)std::max(1LL, stat[0].pairs));
@@ -691,7 +711,8 @@ int main(int argc, char **argv) {
                             : fn == 4 ? (group[0] == 0   ? "control_throughput[ov]"
                                          : group[0] == 1 ? "control_throughput[cf]"
                                                          : "control_throughput[ct]")
-                                      : "control_pairs";
+                            : fn == 5 ? "control_pairs[ov]"
+                            : fn == 6 ? "control_pairs[cf]" : "control_pairs[ct]";
         double const t1thread = median(w[f][1]);
         for (int threads = 1; threads <= 2; ++threads) {
           double const med = median(w[f][threads]);
@@ -739,16 +760,22 @@ int main(int argc, char **argv) {
           std::fprintf(csv, "# %s speed-up of function %d / speed-up of %s, same repetition: median %.3f\n",
                        name, group[0], fname, median(rel));
         }
-        if (fn == 5) {
+        if (fn >= 5) {
           std::string tr;
           for (auto const &t : thread_rates) tr += t;
-          std::printf("  control_pairs thread CPU ns per pair, per repetition [1 thread] then "
-                      "thread 0/thread 1 of the 2-thread pass:%s\n", tr.c_str());
-          std::fprintf(csv, "# %s control_pairs thread CPU ns per pair ([1 thread] then thread "
-                            "0/thread 1 of the 2-thread pass):%s\n", name, tr.c_str());
+          std::printf("  %s thread CPU ns per pair, per repetition [1 thread] then "
+                      "thread 0/thread 1 of the 2-thread pass:%s\n", fname, tr.c_str());
+          std::fprintf(csv, "# %s %s thread CPU ns per pair ([1 thread] then thread "
+                            "0/thread 1 of the 2-thread pass):%s\n", name, fname, tr.c_str());
           bool same = true;
-          for (long long k = 0; k < batch_m; ++k) same = same && ov_control[k] == ov[k];
-          if (!same) std::printf("  WARNING: control_pairs verdicts differ from pw85_overlap_batch\n");
+          if (fn == 5)
+            for (long long k = 0; k < batch_m; ++k) same = same && ov_control[k] == ov[k];
+          else if (fn == 6)
+            same = std::memcmp(out2_control.data(), out2.data(), out2.size() * sizeof(double)) == 0;
+          else
+            for (long long k = 0; k < batch_m; ++k)
+              same = same && std::memcmp(&ct_control[k], &ct[k], sizeof ct[k]) == 0;
+          if (!same) std::printf("  WARNING: %s results differ from the batch call's\n", fname);
         }
       }
       std::fflush(stdout);
