@@ -46,10 +46,10 @@
 // and of control loops on std::threads (what the shared machine offers at
 // that moment): two compute-only loops with no library call (one
 // latency-bound, one throughput-bound; the throughput one is timed in the
-// same repetitions as each batch call, passes interleaved) and control_pairs,
-// the one-pair pw85_overlap over the batch's pairs without OpenMP (timed with
-// pw85_overlap_batch; per-thread CPU ns per pair printed), with nthreads = 1
-// and 2 (one untimed
+// same repetitions as each batch call, passes interleaved) and, for each
+// batch call, control_pairs: its one-pair function over the same pairs
+// without OpenMP (timed in the same repetitions; per-thread CPU ns per pair
+// printed), with nthreads = 1 and 2 (one untimed
 // pass each, then --batch-reps passes alternating 1 and 2 threads), median,
 // min and max over the passes, speed-up = median time (1 thread) / median
 // time (2 threads); a line per function with the ratio of each interleaved
@@ -219,10 +219,9 @@ double thread_ns() {
 // pw85_contact_function or pw85_contact) on the batch's pairs, split over 1
 // or 2 std::threads that take chunks of `chunk` pairs from a shared counter
 // (as the batch's dynamic schedule does) and prefetch pair k + 16 (as the
-// batch does). Each thread
-// also records its thread CPU time and pair count, so a 2-thread pass shows
-// whether both vCPUs ran this code at the one-thread rate (docs/batch.md,
-// "What the machine offers").
+// batch does). Each thread also records its thread CPU time and pair
+// count, so a 2-thread pass shows whether both vCPUs ran this code at the
+// one-thread rate (docs/batch.md, "What the machine offers").
 struct PairsThreadStat {
   long long pairs = 0;
   double cpu_ns = 0.0;
@@ -624,7 +623,7 @@ int main(int argc, char **argv) {
       // from other processes on the shared machine hits both alike; each
       // (1-thread, 2-thread) pair of consecutive passes gives one ratio.
       std::vector<double> w[3][3], ratios[3];
-      std::vector<std::string> thread_rates;  // control_pairs, 2-thread passes
+      std::vector<std::string> thread_rates;  // control_pairs: per-thread ns per pair, each pass
       std::vector<double> out2(group[0] == 1 ? 2 * batch_m : 0),
           out2_control(group[0] == 1 ? 2 * batch_m : 0);
       std::vector<pw85_contact_t> ct_control(group[0] == 2 ? batch_m : 0);
