@@ -66,6 +66,7 @@ PW85_ALWAYS_INLINE double fixed_point_start(Vec3 const &r, Sym3 const &q1, Sym3 
   for (int i = 0; i < kDim; ++i) mr[i] = n12[i] - (n1[i] + n2[i]);
   double a1, a2;
   detail::support_squares(n12, q1, q2, a1, a2);  // step 1: lambda = 1/2, n = adj(Q1 + Q2) r
+  double lam[kSteps];
   for (int k = 1; k < kSteps; ++k) {
     // Range: with every magnitude in (2^-60, 2^60) (methods.cpp rescales
     // the others), a_i <= ~2^420, and a_i >= ~2^-460 for eigenvalue ratios
@@ -74,14 +75,19 @@ PW85_ALWAYS_INLINE double fixed_point_start(Vec3 const &r, Sym3 const &q1, Sym3 
     // wrong result. sqrt(a1) sqrt(a2) would avoid both; it measured ~2 %
     // slower (A/B, one more square root per step).
     double const g = std::sqrt(a1 * a2), scale = 1.0 / (a1 + a2);
+    lam[k - 1] = a1 / (a1 + g);  // h1 / (h1 + h2), off the chain
     double const c1 = a2 * scale, cm = g * scale, c2 = a1 * scale;
     Vec3 n;
     for (int i = 0; i < kDim; ++i) n[i] = c1 * n1[i] + (cm * mr[i] + c2 * n2[i]);
     detail::support_squares(n, q1, q2, a1, a2);
   }
   double const h1 = std::sqrt(a1), h2 = std::sqrt(a2);
-  double const l = h1 / (h1 + h2);
-  return l > 0.0 && l < 1.0 ? l : newton_start(r, q1, q2);  // NaN, 0 or 1: (M7)
+  double const l3 = h1 / (h1 + h2);
+  // Aitken's extrapolation of the linearly converging iterates.
+  double const e1 = l3 - lam[1], e0 = lam[1] - lam[0];
+  double const corr = e1 * e1 / (e1 - e0);
+  double const l = std::fabs(corr) <= 10.0 * std::fabs(e1) ? l3 - corr : l3;
+  return l > 0.0 && l < 1.0 ? l : (l3 > 0.0 && l3 < 1.0 ? l3 : newton_start(r, q1, q2));
 }
 
 }  // namespace pw85
