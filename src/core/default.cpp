@@ -47,6 +47,10 @@ constexpr double kDDModelGap = 0x1p-40;
 constexpr double kDDSlopeRel = 0x1p-10;
 constexpr int kDDMaxNewton = 6;
 constexpr int kDDMaxBisect = 80;
+// Taylor coefficients 1/3! and 1/4! (rounded): multiplications, since the
+// divider is a bottleneck of the fast path (a division by a constant is not
+// turned into a product without -freciprocal-math).
+constexpr double kInv6 = 1.0 / 6.0, kInv24 = 1.0 / 24.0;
 
 // The whole method, inlined into one function per instruction-set level
 // (contact_default below). Its hot part, the start and the adjugate
@@ -99,11 +103,11 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
         // Quartic Taylor model at lambda (eq. (M18)); its truncation is
         // estimated by its last term, counted twice below.
         double const h2 = h * h;
-        double const trunc = std::fabs(e.d4f * h2 * h2) / 24.0;
+        double const trunc = std::fabs(e.d4f * h2 * h2) * kInv24;
         double const err_l = edf * std::fabs(h) + edf * edf / (2.0 * a) + 2.0 * trunc;
         if (err_l <= kExtrapBudget * e.f || std::fabs(e.df) <= 2.0 * edf || tiny) {
           double const corr =
-              h * (e.df + h * (0.5 * e.d2f + h * (e.d3f / 6.0 + h * e.d4f / 24.0)));
+              h * (e.df + h * (0.5 * e.d2f + h * (e.d3f * kInv6 + h * e.d4f * kInv24)));
           // First-order error of the double f: |r|^T E + rounding of r^T s.
           double const err1 =
               p * (dot(ar, E) + 3.0 * kU * dot(ar, as)) + 4.0 * kU * e.f + err_l;

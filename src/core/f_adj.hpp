@@ -18,7 +18,7 @@ struct AdjEval {
   double lambda;
   double phi, dphi;
   double f, df, d2f, d3f, d4f;
-  double det;
+  double det, inv_det;  // inv_det = fl(1 / det)
   Sym3 q, adj;
   Vec3 s;
 };
@@ -48,6 +48,7 @@ PW85_ALWAYS_INLINE bool f_eval_adj(double lambda, Vec3 const &r, Sym3 const &q1,
   Vec3 const w0 = multiply(d, v0);  // det^2 w
   Vec3 const x0 = multiply(c, w0);  // det^3 Q^{-1} w
   double const id = 1.0 / det, id2 = id * id;
+  e.inv_det = id;
   double const id3 = id2 * id, id4 = id2 * id2;
   e.s = Vec3{{s0[0] * id, s0[1] * id, s0[2] * id}};
   double const phi = dot(r, s0) * id;
@@ -77,10 +78,11 @@ PW85_ALWAYS_INLINE Vec3 adj_error(AdjEval const &e, Vec3 const &r, Sym3 const &q
                  qa[1] * qa[4] + qa[2] * qa[3], qa[0] * qa[5] + qa[2] * qa[2],
                  qa[1] * qa[2] + qa[0] * qa[4], qa[0] * qa[3] + qa[1] * qa[1]}};
   double const det_abs = qa[0] * aa[0] + qa[1] * aa[1] + qa[2] * aa[2];
-  double const rel_det = 4.0 * u * det_abs / e.det;
+  // 1/det from the evaluation (its rounding, 1u, is inside the factor 4).
+  double const k = 4.0 * u * e.inv_det;
+  double const rel_det = k * det_abs;
   Vec3 const ar{{std::fabs(r[0]), std::fabs(r[1]), std::fabs(r[2])}};
   Vec3 const t = multiply(aa, ar);
-  double const k = 4.0 * u / e.det;
   Vec3 err;
   for (int i = 0; i < kDim; ++i) err[i] = k * t[i] + rel_det * std::fabs(e.s[i]);
   (void)q;
