@@ -48,8 +48,9 @@ constexpr double kDDSlopeRel = 0x1p-10;
 constexpr int kDDMaxNewton = 6;
 constexpr int kDDMaxBisect = 80;
 // Taylor coefficients 1/3! and 1/4! (rounded): multiplications, since the
-// divider is a bottleneck of the fast path (a division by a constant is not
-// turned into a product without -freciprocal-math).
+// divider is shared by every division and square root of the fast path
+// (docs/methods.md, (M21); a division by a constant is not turned into a
+// product without -freciprocal-math).
 constexpr double kInv6 = 1.0 / 6.0, kInv24 = 1.0 / 24.0;
 
 // The whole method, inlined into one function per instruction-set level

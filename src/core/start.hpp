@@ -1,4 +1,4 @@
-// Starting points of the iterations (docs/methods.md, eqs. (M7), (M19)),
+// Starting points of the iterations (docs/methods.md, eqs. (M7), (M19), (M20)),
 // inline so that the instruction-set variants of DEFAULT (default.cpp)
 // compile them for their level; also used by NEWTON and RATIONAL.
 #pragma once
@@ -55,7 +55,8 @@ inline Vec3 adj_times(Sym3 const &q, Vec3 const &r) noexcept {
 // next n is (a2 n1 + sqrt(a1 a2) M r + a1 n2) / (a1 + a2): one square root
 // on the dependency chain of a step and no division there (the reciprocal
 // of a1 + a2 is formed while the square root runs; the factor keeps n from
-// over- or underflowing over the steps).
+// over- or underflowing over the steps). The result is the Aitken
+// extrapolation of the three iterates (eq. (M20)).
 PW85_ALWAYS_INLINE double fixed_point_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
   constexpr int kSteps = 3;
   Sym3 q12;
@@ -66,7 +67,8 @@ PW85_ALWAYS_INLINE double fixed_point_start(Vec3 const &r, Sym3 const &q1, Sym3 
   for (int i = 0; i < kDim; ++i) mr[i] = n12[i] - (n1[i] + n2[i]);
   double a1, a2;
   detail::support_squares(n12, q1, q2, a1, a2);  // step 1: lambda = 1/2, n = adj(Q1 + Q2) r
-  double lam[kSteps];
+  static_assert(kSteps >= 3, "Aitken's extrapolation needs three iterates");
+  double lam[kSteps - 1];  // lambda after steps 1 .. kSteps - 1
   for (int k = 1; k < kSteps; ++k) {
     // Range: with every magnitude in (2^-60, 2^60) (methods.cpp rescales
     // the others), a_i <= ~2^420, and a_i >= ~2^-460 for eigenvalue ratios
@@ -83,8 +85,11 @@ PW85_ALWAYS_INLINE double fixed_point_start(Vec3 const &r, Sym3 const &q1, Sym3 
   }
   double const h1 = std::sqrt(a1), h2 = std::sqrt(a2);
   double const l3 = h1 / (h1 + h2);
-  // Aitken's extrapolation of the linearly converging iterates.
-  double const e1 = l3 - lam[1], e0 = lam[1] - lam[0];
+  // Eq. (M20): Aitken's extrapolation of the last three iterates (the map
+  // converges linearly), kept when the correction is at most 10 times the
+  // last step (contraction ratio below ~0.9, or oscillation) and lands in
+  // (0, 1); a zero or NaN denominator fails the test.
+  double const e1 = l3 - lam[kSteps - 2], e0 = lam[kSteps - 2] - lam[kSteps - 3];
   double const corr = e1 * e1 / (e1 - e0);
   double const l = std::fabs(corr) <= 10.0 * std::fabs(e1) ? l3 - corr : l3;
   return l > 0.0 && l < 1.0 ? l : (l3 > 0.0 && l3 < 1.0 ? l3 : newton_start(r, q1, q2));
