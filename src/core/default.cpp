@@ -39,6 +39,9 @@ constexpr double kFastRel = 4e-15;
 constexpr double kExtrapGap = 1e-6;
 constexpr double kExtrapBudget = 1e-16;
 constexpr int kAdjMaxIter = 30;
+// Steps of the start (M22) and its stopping test (start.hpp).
+constexpr int kStartMin = 1, kStartMax = 6;
+constexpr double kStartTol = 3e-2;
 // The stationary form is tried when the first-order relative error of the
 // double phi is below this (its second-order error is then below ~4e-16).
 constexpr double kMaxFirstOrderRel = 1e-8;
@@ -62,7 +65,7 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
   res.iterations = 0;
   Sym3 const d = difference(q2, q1);
   // Step 1: Halley iteration with adjugate evaluations (f_adj.hpp).
-  double const lambda0 = fixed_point_start(r, q1, q2);
+  double const lambda0 = log_newton_start<kStartMin, kStartMax>(r, q1, q2, kStartTol);
   double start = lambda0;
   {
     double lo = 0.0, hi = 1.0, lambda = lambda0;

@@ -1,6 +1,7 @@
-// Starting points of the iterations (docs/methods.md, eqs. (M7), (M19), (M20)),
-// inline so that the instruction-set variants of DEFAULT (default.cpp)
-// compile them for their level; also used by NEWTON and RATIONAL.
+// Starting points of the iterations (docs/methods.md, eqs. (M7), (M19), (M20),
+// (M22)), inline so that the instruction-set variants of DEFAULT
+// (default.cpp) compile them for their level. (M22) is DEFAULT's start;
+// (M19)-(M20) are NEWTON's and RATIONAL's.
 #pragma once
 
 #include <cmath>
@@ -93,6 +94,107 @@ PW85_ALWAYS_INLINE double fixed_point_start(Vec3 const &r, Sym3 const &q1, Sym3 
   double const corr = e1 * e1 / (e1 - e0);
   double const l = std::fabs(corr) <= 10.0 * std::fabs(e1) ? l3 - corr : l3;
   return l > 0.0 && l < 1.0 ? l : (l3 > 0.0 && l3 < 1.0 ? l3 : newton_start(r, q1, q2));
+}
+
+// Eq. (M22): Newton's method on the fixed-point equation of (M19) in
+// logarithmic coordinates (DEFAULT's start). With x = lambda / (1 - lambda)
+// and n(x) = adj(Q1) r + x M r + x^2 adj(Q2) r (as in (M19)),
+//   a_i(x) = n(x)^T Q_i n(x) = sum_k c_ik x^k,  k = 0..4,
+// are quartics whose coefficients are formed once, and lambda* is the root
+// of F(t) = G(t) - t, t = log x, G = (log a1 - log a2) / 2, since
+//   f'(lambda) = (1 - lambda)^6 / det(Q(lambda))^2 (a1(x) - x^2 a2(x))
+// (with s = Q^{-1} r: f' = (1 - lambda)^2 s^T Q1 s - lambda^2 s^T Q2 s).
+// (M19) is the fixed-point iteration t <- G(t) (linear convergence); a
+// Newton step on F is
+//   delta = (G - t) / (1 - G'),  G - t = log(rho) / 2,  rho = a1 / (x^2 a2),
+//   1 - G' = 1 - x (a1' / a1 - a2' / a2) / 2,
+// taken with two changes that keep its quadratic convergence (they differ
+// from the exact step by third-order terms) and make it safe far from the
+// root: log(rho) / 2 is replaced by tanh(log(rho) / 2) = (a1 - x^2 a2) /
+// (a1 + x^2 a2), bounded by 1, and exp(delta) by its Pade form
+// (2 + delta) / (2 - delta), with |delta| clamped to kClamp < 2 so that x
+// stays positive. Where 1 - G' <= 0 (far from the root) the step is the
+// fixed-point direction delta = tanh(log(rho) / 2). The step is one
+// division: x <- x (2 D + N) / (2 D - N), delta = N / D. It starts from the
+// first (M19) iterate x = (a1(1) / a2(1))^(1/2) and stops after kMin steps
+// once |delta| <= tol (then the error of x is ~delta^2), or after kMax;
+// the last step returns lambda = x / (1 + x) directly.
+// Coefficients: the identity (Q1 + x Q2) adj(Q1 + x Q2) = det(Q1 + x Q2) I
+// leaves two products Q_i v to form (below). They are scaled by
+// 1 / (a1(1) + a2(1)) (F and G' do not change when a1 and a2 are scaled
+// together), which keeps the products of three a's in the step from
+// overflowing. A lambda outside (0, 1) (NaN from an overflow, or a
+// rounding-dominated quartic) falls back to (M7).
+template <int kMin, int kMax>
+PW85_ALWAYS_INLINE double log_newton_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                           double tol) noexcept {
+  static_assert(1 <= kMin && kMin <= kMax, "step counts");
+  constexpr double kClamp = 1.6;
+  Sym3 q12;
+  for (int i = 0; i < kSym; ++i) q12[i] = q1[i] + q2[i];
+  Sym3 const c1 = adjugate3(q1), c2 = adjugate3(q2);
+  Vec3 const n12 = detail::adj_times(q12, r);
+  Vec3 const n1{{c1[0] * r[0] + (c1[1] * r[1] + c1[2] * r[2]),
+                 c1[1] * r[0] + (c1[3] * r[1] + c1[4] * r[2]),
+                 c1[2] * r[0] + (c1[4] * r[1] + c1[5] * r[2])}};
+  Vec3 const n2{{c2[0] * r[0] + (c2[1] * r[1] + c2[2] * r[2]),
+                 c2[1] * r[0] + (c2[3] * r[1] + c2[4] * r[2]),
+                 c2[2] * r[0] + (c2[4] * r[1] + c2[5] * r[2])}};
+  Vec3 m;
+  for (int i = 0; i < kDim; ++i) m[i] = n12[i] - (n1[i] + n2[i]);
+  // a_i(1) (x = 1, lambda = 1/2: n = adj(Q1 + Q2) r), the first (M19) iterate.
+  double s1, s2;
+  detail::support_squares(n12, q1, q2, s1, s2);
+  double x = std::sqrt(s1 / s2);
+  double const sc = 1.0 / (s1 + s2);
+  double const det1 = (q1[0] * c1[0] + q1[1] * c1[1] + q1[2] * c1[2]) * sc;
+  double const det2 = (q2[0] * c2[0] + q2[1] * c2[1] + q2[2] * c2[2]) * sc;
+  // t1 = tr(adj(Q1) Q2), t2 = tr(Q1 adj(Q2)) (scaled), the middle terms of
+  // det(Q1 + x Q2) = det1 + t1 x + t2 x^2 + det2 x^3.
+  double const t1 = ((c1[0] * q2[0] + c1[3] * q2[3]) + c1[5] * q2[5] +
+                     2.0 * ((c1[1] * q2[1] + c1[2] * q2[2]) + c1[4] * q2[4])) * sc;
+  double const t2 = ((q1[0] * c2[0] + q1[3] * c2[3]) + q1[5] * c2[5] +
+                     2.0 * ((q1[1] * c2[1] + q1[2] * c2[2]) + q1[4] * c2[4])) * sc;
+  double const rn1 = dot(r, n1), rm = dot(r, m), rn2 = dot(r, n2);
+  // The x^0 and x^1 terms of (Q1 + x Q2) adj(Q1 + x Q2) = det(Q1 + x Q2) I
+  // give Q1 n1 = det1 r and Q1 m = t1 r - Q2 n1; likewise Q2 n2 = det2 r
+  // and Q2 m = t2 r - Q1 n2: two products Q_i v remain.
+  Vec3 const p = multiply(q2, n1), q = multiply(q1, n2);
+  double const mp = dot(m, p) * sc, mq = dot(m, q) * sc;
+  // c_ik (scaled): a1 = n1.Q1n1 + 2x m.Q1n1 + x^2 (m.Q1m + 2 n2.Q1n1) + 2x^3 n2.Q1m + x^4 n2.Q1n2.
+  double const a10 = det1 * rn1, a11 = 2.0 * det1 * rm;
+  double const a12 = (t1 * rm - mp) + 2.0 * det1 * rn2;
+  double const a13 = 2.0 * mq, a14 = dot(n2, q) * sc;
+  double const a24 = det2 * rn2, a23 = 2.0 * det2 * rm;
+  double const a22 = (t2 * rm - mq) + 2.0 * det2 * rn1;
+  double const a21 = 2.0 * mp, a20 = dot(n1, p) * sc;
+  // Coefficients of the derivatives a_i'.
+  double const b12 = 2.0 * a12, b13 = 3.0 * a13, b14 = 4.0 * a14;
+  double const b22 = 2.0 * a22, b23 = 3.0 * a23, b24 = 4.0 * a24;
+  for (int k = 1;; ++k) {
+    // Estrin's scheme (short dependency chains).
+    double const x2 = x * x;
+    double const a1 = (a10 + a11 * x) + x2 * ((a12 + a13 * x) + x2 * a14);
+    double const a2 = (a20 + a21 * x) + x2 * ((a22 + a23 * x) + x2 * a24);
+    double const d1 = (a11 + b12 * x) + x2 * (b13 + b14 * x);
+    double const d2 = (a21 + b22 * x) + x2 * (b23 + b24 * x);
+    double const b = x2 * a2;
+    double n = a1 - b, dd = a1 + b;  // tanh(log(rho) / 2) = n / dd
+    double const w = 2.0 * (a1 * a2);
+    double const g = w - x * (d1 * a2 - d2 * a1);  // (1 - G') w
+    if (g > 0.0) {
+      n = n * w;  // delta = n / dd
+      dd = dd * g;
+    }
+    double const lim = kClamp * dd;
+    double const nc = std::fabs(n) > lim ? std::copysign(lim, n) : n;
+    double const num = x * (2.0 * dd + nc), den = 2.0 * dd - nc;
+    if (k >= kMax || (k >= kMin && std::fabs(n) <= tol * dd)) {
+      double const l = num / (den + num);
+      return l > 0.0 && l < 1.0 ? l : newton_start(r, q1, q2);
+    }
+    x = num / den;
+  }
 }
 
 }  // namespace pw85
