@@ -1,5 +1,6 @@
 // PW85_METHOD_DEFAULT (docs/methods.md, section "DEFAULT"):
-//  0. from the fixed-point start (newton.cpp, eq. (M19)), a safeguarded
+//  0. from the start (M22) (start.hpp: Newton on the fixed-point equation of
+//     (M19) in logarithmic coordinates), a safeguarded
 //     Halley iteration as NEWTON's (newton.cpp) but with f and its
 //     derivatives from the adjugate of Q(lambda) (f_adj.hpp, eq. (M16)),
 //     then f at the final lambda by the stationary form (f_dd.hpp, eq. (M11))
