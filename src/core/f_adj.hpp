@@ -40,7 +40,7 @@ PW85_ALWAYS_INLINE bool f_eval_adj(double lambda, Vec3 const &r, Sym3 const &q1,
   Sym3 const &q = e.q;
   e.adj = adjugate3(q);
   Sym3 const &c = e.adj;
-  double const det = q[0] * c[0] + q[1] * c[1] + q[2] * c[2];
+  double const det = det_with_adjugate(q, c);
   e.det = det;
   Vec3 const s0 = multiply(c, r);   // det s
   Vec3 const u0 = multiply(d, s0);  // det u

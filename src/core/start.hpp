@@ -35,11 +35,15 @@ inline void support_squares(Vec3 const &n, Sym3 const &q1, Sym3 const &q2, doubl
   a2 = (q2[0] * n00 + q2[3] * n11) + (q2[5] * n22 + q2[1] * n01) + (q2[2] * n02 + q2[4] * n12);
 }
 
-inline Vec3 adj_times(Sym3 const &q, Vec3 const &r) noexcept {
-  Sym3 const c = adjugate3(q);
+// c r summed as short trees (multiply() of sym3.hpp sums left to right).
+inline Vec3 tree_times(Sym3 const &c, Vec3 const &r) noexcept {
   return Vec3{{c[0] * r[0] + (c[1] * r[1] + c[2] * r[2]),
                c[1] * r[0] + (c[3] * r[1] + c[4] * r[2]),
                c[2] * r[0] + (c[4] * r[1] + c[5] * r[2])}};
+}
+
+inline Vec3 adj_times(Sym3 const &q, Vec3 const &r) noexcept {
+  return tree_times(adjugate3(q), r);
 }
 
 }  // namespace detail
@@ -134,12 +138,7 @@ PW85_ALWAYS_INLINE double log_newton_start(Vec3 const &r, Sym3 const &q1, Sym3 c
   for (int i = 0; i < kSym; ++i) q12[i] = q1[i] + q2[i];
   Sym3 const c1 = adjugate3(q1), c2 = adjugate3(q2);
   Vec3 const n12 = detail::adj_times(q12, r);
-  Vec3 const n1{{c1[0] * r[0] + (c1[1] * r[1] + c1[2] * r[2]),
-                 c1[1] * r[0] + (c1[3] * r[1] + c1[4] * r[2]),
-                 c1[2] * r[0] + (c1[4] * r[1] + c1[5] * r[2])}};
-  Vec3 const n2{{c2[0] * r[0] + (c2[1] * r[1] + c2[2] * r[2]),
-                 c2[1] * r[0] + (c2[3] * r[1] + c2[4] * r[2]),
-                 c2[2] * r[0] + (c2[4] * r[1] + c2[5] * r[2])}};
+  Vec3 const n1 = detail::tree_times(c1, r), n2 = detail::tree_times(c2, r);
   Vec3 m;
   for (int i = 0; i < kDim; ++i) m[i] = n12[i] - (n1[i] + n2[i]);
   // a_i(1) (x = 1, lambda = 1/2: n = adj(Q1 + Q2) r), the first (M19) iterate.
@@ -147,8 +146,8 @@ PW85_ALWAYS_INLINE double log_newton_start(Vec3 const &r, Sym3 const &q1, Sym3 c
   detail::support_squares(n12, q1, q2, s1, s2);
   double x = std::sqrt(s1 / s2);
   double const sc = 1.0 / (s1 + s2);
-  double const det1 = (q1[0] * c1[0] + q1[1] * c1[1] + q1[2] * c1[2]) * sc;
-  double const det2 = (q2[0] * c2[0] + q2[1] * c2[1] + q2[2] * c2[2]) * sc;
+  double const det1 = det_with_adjugate(q1, c1) * sc;
+  double const det2 = det_with_adjugate(q2, c2) * sc;
   // t1 = tr(adj(Q1) Q2), t2 = tr(Q1 adj(Q2)) (scaled), the middle terms of
   // det(Q1 + x Q2) = det1 + t1 x + t2 x^2 + det2 x^3.
   double const t1 = ((c1[0] * q2[0] + c1[3] * q2[3]) + c1[5] * q2[5] +

@@ -93,6 +93,11 @@ inline Sym3 adjugate3(Sym3 const &q) noexcept {
                q[0] * q[5] - q[2] * q[2], q[1] * q[2] - q[0] * q[4], q[0] * q[3] - q[1] * q[1]}};
 }
 
+// det(Q) from Q and c = adj(Q): the first row of Q adj(Q) = det(Q) I.
+inline double det_with_adjugate(Sym3 const &q, Sym3 const &c) noexcept {
+  return q[0] * c[0] + q[1] * c[1] + q[2] * c[2];
+}
+
 inline bool all_finite(double const *p, int n) noexcept {
   for (int i = 0; i < n; ++i)
     if (!std::isfinite(p[i])) return false;
