@@ -111,6 +111,19 @@ inline DD div(DD x, DD y) noexcept {
   return add(q, q3);
 }
 
+// 1 / y by one division and one Newton step: with r0 = RN(1 / y.hi), the
+// residual e = 1 - y r0 (|e| <= 2u) is formed exactly up to the rounding of
+// y.lo r0 (1 - y.hi r0 is a double, Sterbenz), and 1 / y = r0 (1 + e + e^2
+// + ...) = r0 + r0 e with relative error below 8 u^2 = 2^-103. One division
+// instead of div's three in sequence: a third of its latency.
+template <bool F>
+inline DD recip(DD y) noexcept {
+  double const r0 = 1.0 / y.hi;
+  DD const p = two_prod<F>(y.hi, r0);
+  double const e = ((1.0 - p.hi) - p.lo) - y.lo * r0;
+  return fast_two_sum(r0, r0 * e);
+}
+
 inline double to_double(DD x) noexcept { return x.hi + x.lo; }
 
 }  // namespace dd

@@ -36,16 +36,16 @@ PW85_ALWAYS_INLINE bool solve_dd_impl(double lambda, Vec3 const &r, Sym3 const &
   }
   // L D L^T.
   if (!(q[0].hi > 0.0)) return false;
-  DD const id0 = div<F>(DD{1.0, 0.0}, q[0]);
+  DD const id0 = recip<F>(q[0]);
   DD const l10 = mul<F>(q[1], id0), l20 = mul<F>(q[2], id0);
   DD const d1 = sub(q[3], mul<F>(l10, q[1]));
   if (!(d1.hi > 0.0)) return false;
-  DD const id1 = div<F>(DD{1.0, 0.0}, d1);
+  DD const id1 = recip<F>(d1);
   DD const e = sub(q[4], mul<F>(l20, q[1]));
   DD const l21 = mul<F>(e, id1);
   DD const d2 = sub(sub(q[5], mul<F>(l20, q[2])), mul<F>(l21, e));
   if (!(d2.hi > 0.0)) return false;
-  DD const id2 = div<F>(DD{1.0, 0.0}, d2);
+  DD const id2 = recip<F>(d2);
   // y = L^{-1} r, z = D^{-1} y, s = L^{-T} z.
   DD const y0{r[0], 0.0};
   DD const y1 = sub(DD{r[1], 0.0}, mul<F>(l10, r[0]));
