@@ -32,29 +32,34 @@ PW85_ALWAYS_INLINE bool solve_dd_impl(double lambda, Vec3 const &r, Sym3 const &
     // (1 - lambda) q1 exactly as a double-double: om.hi q1 + om.lo q1.
     DD a = two_prod<F>(om.hi, q1[i]);
     a = add(a, om.lo * q1[i]);
-    q[i] = add(a, two_prod<F>(lambda, q2[i]));
+    q[i] = add_sloppy(a, two_prod<F>(lambda, q2[i]));
   }
-  // L D L^T.
+  // L D L^T. The products that do not need a reciprocal (q1^2, q1 q2, q2^2,
+  // e^2) are formed while it runs: d1 = q3 - q1^2 / q0, e = q4 - q1 q2 / q0,
+  // d2 = q5 - q2^2 / q0 - e^2 / d1, so that each pivot is one product and
+  // one difference after the reciprocal before it.
   if (!(q[0].hi > 0.0)) return false;
   DD const id0 = recip<F>(q[0]);
-  DD const l10 = mul<F>(q[1], id0), l20 = mul<F>(q[2], id0);
-  DD const d1 = sub(q[3], mul<F>(l10, q[1]));
+  DD const d1 = sub_sloppy(q[3], mul<F>(mul<F>(q[1], q[1]), id0));
   if (!(d1.hi > 0.0)) return false;
+  DD const e = sub_sloppy(q[4], mul<F>(mul<F>(q[1], q[2]), id0));
+  DD const d2a = sub_sloppy(q[5], mul<F>(mul<F>(q[2], q[2]), id0));
   DD const id1 = recip<F>(d1);
-  DD const e = sub(q[4], mul<F>(l20, q[1]));
-  DD const l21 = mul<F>(e, id1);
-  DD const d2 = sub(sub(q[5], mul<F>(l20, q[2])), mul<F>(l21, e));
+  DD const d2 = sub_sloppy(d2a, mul<F>(mul<F>(e, e), id1));
   if (!(d2.hi > 0.0)) return false;
   DD const id2 = recip<F>(d2);
-  // y = L^{-1} r, z = D^{-1} y, s = L^{-T} z.
+  DD const l10 = mul<F>(q[1], id0), l20 = mul<F>(q[2], id0), l21 = mul<F>(e, id1);
+  // y = L^{-1} r, z = D^{-1} y, s = L^{-T} z with the last row of L^{-T}
+  // formed before z2 is known: s0 = z0 - l10 z1 + (l10 l21 - l20) z2.
   DD const y0{r[0], 0.0};
-  DD const y1 = sub(DD{r[1], 0.0}, mul<F>(l10, r[0]));
-  DD const y2 = sub(sub(DD{r[2], 0.0}, mul<F>(l20, r[0])), mul<F>(l21, y1));
+  DD const y1 = sub_sloppy(DD{r[1], 0.0}, mul<F>(l10, r[0]));
+  DD const y2 = sub_sloppy(sub_sloppy(DD{r[2], 0.0}, mul<F>(l20, r[0])), mul<F>(l21, y1));
   DD const z0 = mul<F>(y0, id0), z1 = mul<F>(y1, id1), z2 = mul<F>(y2, id2);
-  phi = add(add(mul<F>(y0, z0), mul<F>(y1, z1)), mul<F>(y2, z2));
+  phi = add_sloppy(add_sloppy(mul<F>(y0, z0), mul<F>(y1, z1)), mul<F>(y2, z2));
+  DD const c02 = sub_sloppy(mul<F>(l10, l21), l20);
   s[2] = z2;
-  s[1] = sub(z1, mul<F>(l21, s[2]));
-  s[0] = sub(sub(z0, mul<F>(l10, s[1])), mul<F>(l20, s[2]));
+  s[1] = sub_sloppy(z1, mul<F>(l21, z2));
+  s[0] = add_sloppy(sub_sloppy(z0, mul<F>(l10, z1)), mul<F>(c02, z2));
   return true;
 }
 
@@ -69,15 +74,15 @@ PW85_ALWAYS_INLINE bool f_eval_dd_impl(double lambda, Vec3 const &r, Sym3 const 
   if (!solve_dd_impl<F>(lambda, r, q1, q2, sv, phi)) return false;
   DD const s0 = sv[0], s1 = sv[1], s2 = sv[2];
   // s^T D s.
-  DD sds = add(add(mul<F>(dq[0], mul<F>(s0, s0)), mul<F>(dq[3], mul<F>(s1, s1))), mul<F>(dq[5], mul<F>(s2, s2)));
-  DD const cross = add(add(mul<F>(dq[1], mul<F>(s0, s1)), mul<F>(dq[2], mul<F>(s0, s2))),
+  DD sds = add_sloppy(add_sloppy(mul<F>(dq[0], mul<F>(s0, s0)), mul<F>(dq[3], mul<F>(s1, s1))), mul<F>(dq[5], mul<F>(s2, s2)));
+  DD const cross = add_sloppy(add_sloppy(mul<F>(dq[1], mul<F>(s0, s1)), mul<F>(dq[2], mul<F>(s0, s2))),
                        mul<F>(dq[4], mul<F>(s1, s2)));
-  sds = add(sds, mul<F>(cross, 2.0));
+  sds = add_sloppy(sds, mul<F>(cross, 2.0));
   // p = lambda (1 - lambda), p' = 1 - 2 lambda (exact: 2 lambda is exact).
   DD const p = mul<F>(om, lambda);
   DD const p1 = add(om, -lambda);
   DD const f = mul<F>(p, phi);
-  DD const df = sub(mul<F>(phi, p1), mul<F>(p, sds));  // f' = p' phi + p phi', phi' = -s^T D s
+  DD const df = sub_sloppy(mul<F>(phi, p1), mul<F>(p, sds));  // f' = p' phi + p phi', phi' = -s^T D s
   out.f = to_double(f);
   out.df = to_double(df);
   out.phi = to_double(phi);
