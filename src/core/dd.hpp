@@ -3,9 +3,10 @@
 // vol. 2, sec. 4.2.2, theorem B), two_prod by fused multiply-add or, without
 // one, Dekker's product (Numer. Math. 18, 1971, mul12) with Veltkamp's
 // splitting; the compound operations follow the double-double algorithms of
-// Joldes, Muller and Popescu, ACM TOMS 44(2), 2017 (sum: algorithm 6;
-// products: the "sloppy" low-order terms), relative error a few units of
-// 2^-106.
+// Joldes, Muller and Popescu, ACM TOMS 44(2), 2017 (sum: algorithm 6, and
+// its sloppy form, algorithm 5; products: the "sloppy" low-order terms),
+// relative error a few units of 2^-106; the reciprocal is one Newton step
+// from the double reciprocal.
 //
 // Every function takes a template flag F: true uses std::fma (to be
 // instantiated only inside a function compiled for a target with an FMA
@@ -110,22 +111,11 @@ inline DD mul(DD x, DD y) noexcept {
   return fast_two_sum(p.hi, p.lo);
 }
 
-template <bool F>
-inline DD div(DD x, DD y) noexcept {
-  double const q1 = x.hi / y.hi;
-  DD const r = sub(x, mul<F>(y, q1));
-  double const q2 = r.hi / y.hi;
-  DD const r2 = sub(r, mul<F>(y, q2));
-  double const q3 = r2.hi / y.hi;
-  DD const q = fast_two_sum(q1, q2);
-  return add(q, q3);
-}
-
 // 1 / y by one division and one Newton step: with r0 = RN(1 / y.hi), the
 // residual e = 1 - y r0 (|e| <= 2u) is formed exactly up to the rounding of
 // y.lo r0 (1 - y.hi r0 is a double, Sterbenz), and 1 / y = r0 (1 + e + e^2
 // + ...) = r0 + r0 e with relative error below 8 u^2 = 2^-103. One division
-// instead of div's three in sequence: a third of its latency.
+// instead of the three in sequence of [JMP]'s division.
 template <bool F>
 inline DD recip(DD y) noexcept {
   double const r0 = 1.0 / y.hi;

@@ -1,7 +1,8 @@
 // f(lambda) and f'(lambda) in double-double arithmetic (src/core/dd.hpp),
 // for the final steps of PW85_METHOD_DEFAULT (docs/methods.md, eq. (M11)).
-// Q(lambda) = (1 - lambda) Q1 + lambda Q2 is formed exactly (1 - lambda and
-// the products are error-free transformations of the double inputs), then
+// Q(lambda) = (1 - lambda) Q1 + lambda Q2 is formed as double-doubles
+// (1 - lambda and the products are error-free transformations of the double
+// inputs; the sum errs by a few u^2 of its terms), then
 // factored as L D L^T and solved in double-double: the relative error of phi
 // is about kappa(Q) 2^-104 instead of kappa(Q) 2^-53.
 #pragma once
@@ -18,7 +19,7 @@ struct FEvalDD {
   double phi;  // r^T Q^{-1} r, rounded to double
 };
 
-// Q(lambda) = (1 - lambda) Q1 + lambda Q2 formed exactly as double-doubles,
+// Q(lambda) = (1 - lambda) Q1 + lambda Q2 formed as double-doubles,
 // factored as L D L^T and s = Q^{-1} r, phi = r^T s solved in double-double
 // (shared by f_eval_dd_impl and contact_point_dd_impl). Returns false when a
 // pivot is not positive.
