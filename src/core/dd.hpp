@@ -92,10 +92,10 @@ inline DD add_sloppy(DD x, DD y) noexcept {
   DD const s = two_sum(x.hi, y.hi);
   return fast_two_sum(s.hi, s.lo + (x.lo + y.lo));
 }
-inline DD sub_sloppy(DD x, DD y) noexcept { return add_sloppy(x, DD{-y.hi, -y.lo}); }
 
 inline DD neg(DD x) noexcept { return DD{-x.hi, -x.lo}; }
 inline DD sub(DD x, DD y) noexcept { return add(x, neg(y)); }
+inline DD sub_sloppy(DD x, DD y) noexcept { return add_sloppy(x, neg(y)); }
 
 template <bool F>
 inline DD mul(DD x, double y) noexcept {
