@@ -23,3 +23,18 @@
 #else
 #define PW85_ISA_DISPATCH 0
 #endif
+
+// Makes x opaque to the optimiser (it must be materialised, and may have
+// changed): a combined condition such as (a > b) & (c > d) is then tested by
+// one branch instead of being split into one branch per comparison, and
+// code whose result passes through it is not sunk into the branch that
+// uses it. For the unpredictable branches of the overlap filters
+// (docs/overlap.md, "Branches"). No effect on the value.
+template <class T>
+PW85_ALWAYS_INLINE void opaque(T &x) noexcept {
+#if defined(__GNUC__)
+  asm("" : "+r"(x));
+#else
+  (void)x;
+#endif
+}
