@@ -91,7 +91,11 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
       double const next = lambda + step;
       bool const inside = next > lo && next < hi;
       bool const tiny = std::fabs(step) <= 2.0 * kU * lambda;
-      if (a > 0.0 && (tiny || (inside && e.df * e.df <= 2.0 * a * kExtrapGap * e.f))) {
+      // One branch per decision (opaque, isa.hpp): without it GCC tests
+      // each comparison in turn, and their outcomes vary from pair to pair.
+      bool near = (a > 0.0) & (tiny | (inside & (e.df * e.df <= 2.0 * a * kExtrapGap * e.f)));
+      opaque(near);
+      if (near) {
         // Error terms (eqs. (M10), (M17)): E bounds the error of s.
         Vec3 const E = adj_error(e, r, q1, q2);
         double const p = lambda * (1.0 - lambda), p1 = std::fabs(1.0 - 2.0 * lambda);
@@ -110,7 +114,9 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
         double const h2 = h * h;
         double const trunc = std::fabs(e.d4f * h2 * h2) * kInv24;
         double const err_l = edf * std::fabs(h) + edf * edf / (2.0 * a) + 2.0 * trunc;
-        if (err_l <= kExtrapBudget * e.f || std::fabs(e.df) <= 2.0 * edf || tiny) {
+        bool done = (err_l <= kExtrapBudget * e.f) | (std::fabs(e.df) <= 2.0 * edf) | tiny;
+        opaque(done);
+        if (done) {
           double const corr =
               h * (e.df + h * (0.5 * e.d2f + h * (e.d3f * kInv6 + h * e.d4f * kInv24)));
           // First-order error of the double f: |r|^T E + rounding of r^T s.
