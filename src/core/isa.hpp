@@ -11,6 +11,8 @@
 // overlap variants contract, which its error bounds allow (docs/overlap.md).
 #pragma once
 
+#include <type_traits>
+
 #if defined(__GNUC__)
 #define PW85_ALWAYS_INLINE inline __attribute__((always_inline))
 #else
@@ -32,6 +34,7 @@
 // (docs/overlap.md, "Branches"). No effect on the value.
 template <class T>
 PW85_ALWAYS_INLINE void opaque(T &x) noexcept {
+  static_assert(std::is_integral<T>::value, "opaque: a general-purpose register value");
 #if defined(__GNUC__)
   asm("" : "+r"(x));
 #else
