@@ -30,8 +30,9 @@
 // changed): a combined condition such as (a > b) & (c > d) is then tested by
 // one branch instead of being split into one branch per comparison, and
 // code whose result passes through it is not sunk into the branch that
-// uses it. For the unpredictable branches of the overlap filters
-// (docs/overlap.md, "Branches"). No effect on the value.
+// uses it. For the unpredictable branches of the overlap filters and of
+// DEFAULT's acceptance tests (docs/overlap.md and docs/methods.md,
+// "Branches"). No effect on the value.
 template <class T>
 PW85_ALWAYS_INLINE void opaque(T &x) noexcept {
   static_assert(std::is_integral<T>::value, "opaque: a general-purpose register value");

@@ -342,8 +342,8 @@ int filters_slow(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, double l, int &s
   // tau0 = h1 / (h1 + h2) (the start (M7) of docs/methods.md, with the
   // support values of the plane test). Both are computed, and one branch
   // tests whether either decided: in the scenes of the benchmark (O13)
-  // decides 36-57 % of the pairs past the plane in classes 1-2, a branch
-  // on it alone is mispredicted about as often as not, and a mispredicted
+  // decides 82 and 55 % of the pairs past the plane in classes 1 and 2, a
+  // branch on it alone is often mispredicted, and a mispredicted
   // branch costs more than (O18) (docs/overlap.md, "Branches"). opaque()
   // keeps GCC from sinking (O18) into a branch on (O13).
   bool const o13 = (x[0][0] > err(x[0])) & (x[1][0] > err(x[1])) & (x[2][0] > err(x[2])) &
