@@ -16,7 +16,7 @@ __attribute__((target("fma"))) bool f_eval_dd_fma(double lambda, Vec3 const &r,
 __attribute__((target("fma"))) double f_stationary_fma(double lambda, Vec3 const &r,
                                                       Sym3 const &q1, Sym3 const &q2,
                                                       Vec3 const &s) noexcept {
-  return f_stationary_impl<true>(lambda, r, q1, q2, s);
+  return f_stationary_avx(lambda, r, q1, q2, s);
 }
 __attribute__((target("fma"))) Vec3 residual_dd_fma(double lambda, Vec3 const &r,
                                                    Sym3 const &q1, Sym3 const &q2,
@@ -54,7 +54,7 @@ bool f_eval_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
 double f_stationary(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                     Vec3 const &s) noexcept {
 #if defined(PW85_DD_STATIC_FMA)
-  return f_stationary_impl<true>(lambda, r, q1, q2, s);
+  return f_stationary_avx(lambda, r, q1, q2, s);
 #else
 #if defined(PW85_DD_DISPATCH)
   if (cpu_has_fma()) return f_stationary_fma(lambda, r, q1, q2, s);

@@ -8,6 +8,9 @@
 #pragma once
 
 #include "dd.hpp"
+#if defined(PW85_DD_STATIC_FMA) || defined(PW85_DD_DISPATCH)
+#include <immintrin.h>
+#endif
 #include "isa.hpp"
 #include "sym3.hpp"
 
@@ -132,6 +135,74 @@ PW85_ALWAYS_INLINE double f_stationary_impl(double lambda, Vec3 const &r, Sym3 c
   DD const bracket = sub(add(rs, rs), add(mul<F>(sq1, om), mul<F>(sq2, lambda)));
   return to_double(mul<F>(mul<F>(bracket, om), lambda));
 }
+
+#if defined(PW85_DD_STATIC_FMA) || defined(PW85_DD_DISPATCH)
+// two_sum (dd.hpp) lane by lane.
+inline __attribute__((always_inline, target("fma"))) __m256d avx_two_sum(__m256d a, __m256d b,
+                                                                          __m256d &err) noexcept {
+  __m256d const s = _mm256_add_pd(a, b);
+  __m256d const bb = _mm256_sub_pd(s, a);
+  err = _mm256_add_pd(_mm256_sub_pd(a, _mm256_sub_pd(s, bb)), _mm256_sub_pd(b, bb));
+  return s;
+}
+
+// f_stationary_impl<true> with 4-lane AVX vectors, for the FMA variant of
+// dd_kernels.cpp (eq. (M11), docs/methods.md): the same exact products and
+// error-free sums, in another order. Lanes of p hold s_j s_k for the entries
+// 0-3 of the symmetric storage, lanes of rr the entries 4-5 and r_0 s_0,
+// r_1 s_1; each quadratic form's terms are summed pairwise by two_sum, the
+// errors accumulated in double (Ogita, Rump and Oishi's Dot2, as above).
+// Same results as the scalar form on 800000 random (lambda, s) and on the
+// 160000 DEFAULT calls of the A/B check; 7-9 ns per DEFAULT call faster in
+// classes 1-3 (docs/methods.md, "Vector form of (M11)").
+inline __attribute__((always_inline, target("fma"))) double f_stationary_avx(
+    double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Vec3 const &s) noexcept {
+  using namespace dd;
+  __m256d const sa = _mm256_setr_pd(s[0], s[0], s[0], s[1]);
+  __m256d const sb = _mm256_setr_pd(s[0], s[1], s[2], s[1]);
+  __m256d const sc = _mm256_setr_pd(s[1], s[2], r[0], r[1]);
+  __m256d const sd = _mm256_setr_pd(s[2], s[2], s[0], s[1]);
+  __m256d const p = _mm256_mul_pd(sa, sb), pl = _mm256_fmsub_pd(sa, sb, p);
+  __m256d const rr = _mm256_mul_pd(sc, sd), rl = _mm256_fmsub_pd(sc, sd, rr);
+  __m256d const w = _mm256_setr_pd(1.0, 2.0, 2.0, 1.0);  // exact scalings
+  __m256d const c1a = _mm256_mul_pd(_mm256_loadu_pd(q1.a), w);
+  __m256d const c2a = _mm256_mul_pd(_mm256_loadu_pd(q2.a), w);
+  __m256d const c1b = _mm256_setr_pd(2.0 * q1[4], q1[5], 0.0, 0.0);
+  __m256d const c2b = _mm256_setr_pd(2.0 * q2[4], q2[5], 0.0, 0.0);
+  // c (p + pl) = h + l exactly up to the rounding of c pl (l = c p - h + c pl).
+  __m256d const a1 = _mm256_mul_pd(c1a, p), a1l = _mm256_fmadd_pd(c1a, pl, _mm256_fmsub_pd(c1a, p, a1));
+  __m256d const a2 = _mm256_mul_pd(c2a, p), a2l = _mm256_fmadd_pd(c2a, pl, _mm256_fmsub_pd(c2a, p, a2));
+  __m256d const b1 = _mm256_mul_pd(c1b, rr), b1l = _mm256_fmadd_pd(c1b, rl, _mm256_fmsub_pd(c1b, rr, b1));
+  __m256d const b2 = _mm256_mul_pd(c2b, rr), b2l = _mm256_fmadd_pd(c2b, rl, _mm256_fmsub_pd(c2b, rr, b2));
+  // Lanes {Q1 term, Q1 term, Q2 term, Q2 term}.
+  __m256d const lo = _mm256_permute2f128_pd(a1, a2, 0x20), hi = _mm256_permute2f128_pd(a1, a2, 0x31);
+  __m256d const x = _mm256_permute2f128_pd(b1, b2, 0x20);
+  __m256d err = _mm256_add_pd(_mm256_add_pd(_mm256_permute2f128_pd(a1l, a2l, 0x20),
+                                            _mm256_permute2f128_pd(a1l, a2l, 0x31)),
+                              _mm256_permute2f128_pd(b1l, b2l, 0x20));
+  __m256d e1, e2, e3;
+  __m256d const u = avx_two_sum(lo, hi, e1);
+  __m256d const v = avx_two_sum(u, x, e2);
+  __m256d const t = avx_two_sum(v, _mm256_permute_pd(v, 0x5), e3);  // lanes 0, 2: the sums
+  err = _mm256_add_pd(err, _mm256_add_pd(e1, e2));
+  err = _mm256_add_pd(_mm256_add_pd(err, _mm256_permute_pd(err, 0x5)), e3);
+  __m128d const tl = _mm256_castpd256_pd128(t), th = _mm256_extractf128_pd(t, 1);
+  __m128d const el = _mm256_castpd256_pd128(err), eh = _mm256_extractf128_pd(err, 1);
+  DD const sq1 = two_sum(_mm_cvtsd_f64(tl), _mm_cvtsd_f64(el));
+  DD const sq2 = two_sum(_mm_cvtsd_f64(th), _mm_cvtsd_f64(eh));
+  // r^T s: lanes 2, 3 of rr and r_2 s_2.
+  __m128d const rh = _mm256_extractf128_pd(rr, 1), rlh = _mm256_extractf128_pd(rl, 1);
+  DD const t2 = two_prod<true>(r[2], s[2]);
+  DD const ra = two_sum(_mm_cvtsd_f64(rh), _mm_cvtsd_f64(_mm_unpackhi_pd(rh, rh)));
+  DD const rb = two_sum(ra.hi, t2.hi);
+  double const rc = ((_mm_cvtsd_f64(rlh) + _mm_cvtsd_f64(_mm_unpackhi_pd(rlh, rlh))) + t2.lo) +
+                    (ra.lo + rb.lo);
+  DD const rs = two_sum(rb.hi, rc);
+  DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
+  DD const bracket = sub(add(rs, rs), add(mul<true>(sq1, om), mul<true>(sq2, lambda)));
+  return to_double(mul<true>(mul<true>(bracket, om), lambda));
+}
+#endif
 
 // Compensated dot product of two 3-vectors (Ogita, Rump and Oishi, SIAM J.
 // Sci. Comput. 26(6), 2005, algorithm Dot2): exact products, error-free
