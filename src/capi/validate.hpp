@@ -5,6 +5,7 @@
 
 #include "../core/status.hpp"
 #include "../core/magnitude.hpp"
+#include "../core/screen.hpp"
 #include "../core/sym3.hpp"
 
 namespace pw85 {
@@ -56,13 +57,19 @@ inline Status validate_pair_ldl(double const *r12, double const *q1, double cons
 // general path (validate_pair_ldl, then the dispatcher's scaling).
 inline bool screen_contact_pair(double const *r, double const *q1, double const *q2,
                                 double lo, double hi) noexcept {
-  // A NaN in a matrix is skipped by max_abs and caught by the pivots.
-  double const m1 = max_abs(q1, kSym), m2 = max_abs(q2, kSym);
+  // The two matrices side by side in the two lanes (src/core/screen.hpp).
+  using v2::D2;
+  D2 const a01 = v2::load(q1), a23 = v2::load(q1 + 2), a45 = v2::load(q1 + 4);
+  D2 const b01 = v2::load(q2), b23 = v2::load(q2 + 2), b45 = v2::load(q2 + 4);
+  // A NaN in a matrix may be skipped by the maxima; it reaches a pivot below.
+  D2 const ma = v2::max(v2::max(v2::abs(a01), v2::abs(a23)), v2::abs(a45));
+  D2 const mb = v2::max(v2::max(v2::abs(b01), v2::abs(b23)), v2::abs(b45));
+  double const m1 = ma[0] > ma[1] ? ma[0] : ma[1], m2 = mb[0] > mb[1] ? mb[0] : mb[1];
   double const r0 = std::fabs(r[0]), r1 = std::fabs(r[1]), r2 = std::fabs(r[2]);
   double const rm = max_abs(r, kDim);
   bool const in = (r0 < hi) & (r1 < hi) & (r2 < hi) & (rm > lo) & (m1 > lo) & (m1 < hi) &
                   (m2 > lo) & (m2 < hi);
-  return in && ldl_positive(q1) && ldl_positive(q2);
+  return in & ldl_pivots_positive(a01, a23, a45, b01, b23, b45);
 }
 
 }  // namespace capi

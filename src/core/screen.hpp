@@ -1,7 +1,9 @@
-// The one-pass argument screen of the hot path of pw85_overlap (called from
-// src/core/overlap.cpp so that it is compiled into each instruction-set
-// variant of that path). Shared meaning with src/capi/validate.hpp:
-// ldl_positive there makes the same decisions, one matrix at a time.
+// The one-pass argument screens of the hot paths: pw85_overlap's (called
+// from src/core/overlap.cpp so that it is compiled into each instruction-set
+// variant of that path) and the pivot test that pw85_contact_function_method's
+// screen shares with it (src/capi/validate.hpp, screen_contact_pair).
+// Shared meaning with src/capi/validate.hpp: ldl_positive there makes the
+// same decisions, one matrix at a time.
 #pragma once
 
 #include <cmath>
@@ -26,15 +28,35 @@ inline D2 lo_lanes(D2 a, D2 b) noexcept { return __builtin_shuffle(a, b, I2{0, 2
 inline D2 hi_lanes(D2 a, D2 b) noexcept { return __builtin_shuffle(a, b, I2{1, 3}); }
 }  // namespace v2
 
+// The L D L^T pivot test of ldl_positive (src/capi/validate.hpp: all pivots
+// > 0 and finite) for q1 and q2 at once, given as their three lane pairs
+// a01, a23, a45 and b01, b23, b45: each lane performs exactly the scalar
+// operations of ldl_positive (same decisions), computed whatever the earlier
+// pivots were (ldl_positive stops at the first pivot <= 0; here that
+// pivot's test makes the combined result false all the same).
+inline bool ldl_pivots_positive(v2::D2 a01, v2::D2 a23, v2::D2 a45, v2::D2 b01, v2::D2 b23,
+                                v2::D2 b45) noexcept {
+  using v2::D2;
+  D2 const x0 = v2::lo_lanes(a01, b01), x1 = v2::hi_lanes(a01, b01);
+  D2 const x2 = v2::lo_lanes(a23, b23), x3 = v2::hi_lanes(a23, b23);
+  D2 const x4 = v2::lo_lanes(a45, b45), x5 = v2::hi_lanes(a45, b45);
+  D2 const i0 = 1.0 / x0;
+  D2 const l1 = x1 * i0, l2 = x2 * i0;
+  D2 const d1 = x3 - l1 * x1;
+  D2 const e = x4 - l2 * x1;
+  D2 const d2 = x5 - l2 * x2 - (e / d1) * e;
+  D2 const big{0x1.fffffffffffffp1023, 0x1.fffffffffffffp1023};
+  v2::I2 const ok = (x0 > 0.0) & (d1 > 0.0) & (d2 > 0.0) & (d2 <= big);
+  return (ok[0] & ok[1]) != 0;
+}
+
 // One pass over the arguments of pw85_overlap: true when q1 and q2 pass the
-// L D L^T test of ldl_positive (src/capi/validate.hpp: all pivots > 0 and
-// finite), |r_i| <= hi, |Q_ij| <= hi and max |Q_ij| >= lo; so everything is
-// finite (a NaN entry of a matrix reaches one of its pivots, whose test
-// fails; a NaN in r fails |r_i| <= hi). The two matrices sit side by side in
-// the two lanes, each lane performing exactly the scalar operations of
-// ldl_positive (same decisions), with one combined test at the end instead
-// of an early exit per pivot. False does not mean invalid: the caller then
-// takes the general path (validation, scaling). Pointers must be non-null.
+// pivot test above, |r_i| <= hi, |Q_ij| <= hi and max |Q_ij| >= lo; so
+// everything is finite (a NaN entry of a matrix reaches one of its pivots,
+// whose test fails; a NaN in r fails |r_i| <= hi). One combined test at the
+// end instead of an early exit per pivot. False does not mean invalid: the
+// caller then takes the general path (validation, scaling). Pointers must be
+// non-null.
 inline bool screen_pair_ldl(double const *r, double const *q1, double const *q2, double lo,
                             double hi) noexcept {
   using v2::D2;
@@ -47,20 +69,7 @@ inline bool screen_pair_ldl(double const *r, double const *q1, double const *q2,
   double const qm = m[0] > m[1] ? m[0] : m[1];
   bool const r_ok =
       (std::fabs(r[0]) <= hi) & (std::fabs(r[1]) <= hi) & (std::fabs(r[2]) <= hi);
-  // L D L^T pivots of ldl_positive, both matrices at once, computed whatever
-  // the earlier pivots were (ldl_positive stops at the first pivot <= 0; here
-  // that pivot's test makes the combined result false all the same).
-  D2 const x0 = v2::lo_lanes(a01, b01), x1 = v2::hi_lanes(a01, b01);
-  D2 const x2 = v2::lo_lanes(a23, b23), x3 = v2::hi_lanes(a23, b23);
-  D2 const x4 = v2::lo_lanes(a45, b45), x5 = v2::hi_lanes(a45, b45);
-  D2 const i0 = 1.0 / x0;
-  D2 const l1 = x1 * i0, l2 = x2 * i0;
-  D2 const d1 = x3 - l1 * x1;
-  D2 const e = x4 - l2 * x1;
-  D2 const d2 = x5 - l2 * x2 - (e / d1) * e;
-  D2 const big{0x1.fffffffffffffp1023, 0x1.fffffffffffffp1023};
-  v2::I2 const ok = (x0 > 0.0) & (d1 > 0.0) & (d2 > 0.0) & (d2 <= big);
-  return r_ok & (qm >= lo) & (qm <= hi) & ((ok[0] & ok[1]) != 0);
+  return r_ok & (qm >= lo) & (qm <= hi) & ldl_pivots_positive(a01, a23, a45, b01, b23, b45);
 }
 
 }  // namespace pw85
