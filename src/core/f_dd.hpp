@@ -93,6 +93,18 @@ PW85_ALWAYS_INLINE bool f_eval_dd_impl(double lambda, Vec3 const &r, Sym3 const 
   return std::isfinite(out.f) && std::isfinite(out.df);
 }
 
+// The last step of (M11): lambda (1 - lambda) (2 r^T s - (1 - lambda)
+// s^T Q1 s - lambda s^T Q2 s) in double-double from the three compensated
+// sums, rounded to double.
+template <bool F>
+PW85_ALWAYS_INLINE double stationary_combine(double lambda, dd::DD rs, dd::DD sq1,
+                                             dd::DD sq2) noexcept {
+  using namespace dd;
+  DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
+  DD const bracket = sub(add(rs, rs), add(mul<F>(sq1, om), mul<F>(sq2, lambda)));
+  return to_double(mul<F>(mul<F>(bracket, om), lambda));
+}
+
 // f(lambda) from a double-precision s ~ Q(lambda)^{-1} r by the stationary
 // form (docs/methods.md, eq. (M11)):
 //   phi = max_x (2 r^T x - x^T Q x) = 2 r^T s - s^T Q s + (s - s*)^T Q (s - s*),
@@ -130,10 +142,7 @@ PW85_ALWAYS_INLINE double f_stationary_impl(double lambda, Vec3 const &r, Sym3 c
     b2 = u2.hi;
     c2 += u2.lo + (t2.lo + w * q2[i] * p[i].lo);
   }
-  DD const rs = two_sum(a, ca), sq1 = two_sum(b1, c1), sq2 = two_sum(b2, c2);
-  DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
-  DD const bracket = sub(add(rs, rs), add(mul<F>(sq1, om), mul<F>(sq2, lambda)));
-  return to_double(mul<F>(mul<F>(bracket, om), lambda));
+  return stationary_combine<F>(lambda, two_sum(a, ca), two_sum(b1, c1), two_sum(b2, c2));
 }
 
 #if defined(PW85_DD_STATIC_FMA) || defined(PW85_DD_DISPATCH)
@@ -197,10 +206,7 @@ inline __attribute__((always_inline, target("fma"))) double f_stationary_avx(
   DD const rb = two_sum(ra.hi, t2.hi);
   double const rc = ((_mm_cvtsd_f64(rlh) + _mm_cvtsd_f64(_mm_unpackhi_pd(rlh, rlh))) + t2.lo) +
                     (ra.lo + rb.lo);
-  DD const rs = two_sum(rb.hi, rc);
-  DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
-  DD const bracket = sub(add(rs, rs), add(mul<true>(sq1, om), mul<true>(sq2, lambda)));
-  return to_double(mul<true>(mul<true>(bracket, om), lambda));
+  return stationary_combine<true>(lambda, two_sum(rb.hi, rc), sq1, sq2);
 }
 #endif
 
