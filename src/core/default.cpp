@@ -37,6 +37,10 @@ namespace {
 constexpr double kU = 0x1p-53;
 // Fast path when the estimated relative error is below this.
 constexpr double kFastRel = 4e-15;
+// Rounding error of the stationary form (M11) relative to f: ~7u from its
+// last step in double (f_dd.hpp, stationary_combine) and the compensated
+// sums, with margin.
+constexpr double kStatRel = 10.0 * kU;
 constexpr double kExtrapGap = 1e-6;
 constexpr double kExtrapBudget = 1e-16;
 constexpr int kAdjMaxIter = 30;
@@ -132,12 +136,12 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
           // before the form is computed (with f for mu2, 1e-3 margin), so
           // that pairs bound to fail go straight to step 2.
           double const err2 = p * dot(E, multiply(qa, E)) + err_l;
-          if (err2 + e.f * 8.0 * kU > 0.999 * kFastRel * e.f) {
+          if (err2 + e.f * kStatRel > 0.999 * kFastRel * e.f) {
             if (!tiny) start = next;
             break;
           }
           double const mu2 = f_stationary(lambda, r, q1, q2, e.s) + corr;
-          double const err = mu2 * 8.0 * kU + err2;
+          double const err = mu2 * kStatRel + err2;
           if (err <= kFastRel * mu2) {
             res.mu2 = mu2;
             res.lambda = lambda + h;
@@ -172,12 +176,12 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
     }
     if (ok && a > 0.0 && rel_double <= kMaxFirstOrderRel) {
       // f at e.lambda by the stationary form (eq. (M11)), error
-      // ~ 8u + 4 rel^2 relative; then the Taylor step of the iteration.
+      // ~ kStatRel + 4 rel^2 relative; then the Taylor step of the iteration.
       double const h = st.step;
       double const corr = h * (e.df + h * (0.5 * e.d2f + h * e.d3f / 6.0));
       double const mu2 = f_stationary(e.lambda, r, q1, q2, e.s) + corr;
       double const err =
-          mu2 * (8.0 * kU + 4.0 * rel_double * rel_double) + newton_lambda_error(st);
+          mu2 * (kStatRel + 4.0 * rel_double * rel_double) + newton_lambda_error(st);
       if (err <= kFastRel * mu2) {
         res.mu2 = mu2;
         res.lambda = st.lambda;

@@ -94,15 +94,19 @@ PW85_ALWAYS_INLINE bool f_eval_dd_impl(double lambda, Vec3 const &r, Sym3 const 
 }
 
 // The last step of (M11): lambda (1 - lambda) (2 r^T s - (1 - lambda)
-// s^T Q1 s - lambda s^T Q2 s) in double-double from the three compensated
-// sums, rounded to double.
-template <bool F>
-PW85_ALWAYS_INLINE double stationary_combine(double lambda, dd::DD rs, dd::DD sq1,
-                                             dd::DD sq2) noexcept {
-  using namespace dd;
-  DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
-  DD const bracket = sub(add(rs, rs), add(mul<F>(sq1, om), mul<F>(sq2, lambda)));
-  return to_double(mul<F>(mul<F>(bracket, om), lambda));
+// s^T Q1 s - lambda s^T Q2 s) in double from the three compensated sums,
+// each rounded to double (the unevaluated pair a + c, one rounding). The
+// double-double work is in the sums, whose terms cancel; here the terms are
+// positive except the one subtraction, and 2 r^T s ~ 2 s^T Q s ~ 2 phi when
+// s is close to Q^{-1} r (the only case where the form is used), so the
+// result errs by at most ~7u relative: u/2 for each rounded sum and for
+// 1 - lambda, u/2 per operation, the subtraction at most doubling the
+// relative errors of its operands (docs/methods.md, (M11)).
+PW85_ALWAYS_INLINE double stationary_combine(double lambda, double rs, double sq1,
+                                             double sq2) noexcept {
+  double const om = 1.0 - lambda;
+  double const bracket = 2.0 * rs - (om * sq1 + lambda * sq2);
+  return (lambda * om) * bracket;
 }
 
 // f(lambda) from a double-precision s ~ Q(lambda)^{-1} r by the stationary
@@ -142,7 +146,7 @@ PW85_ALWAYS_INLINE double f_stationary_impl(double lambda, Vec3 const &r, Sym3 c
     b2 = u2.hi;
     c2 += u2.lo + (t2.lo + w * q2[i] * p[i].lo);
   }
-  return stationary_combine<F>(lambda, two_sum(a, ca), two_sum(b1, c1), two_sum(b2, c2));
+  return stationary_combine(lambda, a + ca, b1 + c1, b2 + c2);
 }
 
 #if defined(PW85_DD_STATIC_FMA) || defined(PW85_DD_DISPATCH)
@@ -197,8 +201,8 @@ inline __attribute__((always_inline, target("fma"))) double f_stationary_avx(
   err = _mm256_add_pd(_mm256_add_pd(err, _mm256_permute_pd(err, 0x5)), e3);
   __m128d const tl = _mm256_castpd256_pd128(t), th = _mm256_extractf128_pd(t, 1);
   __m128d const el = _mm256_castpd256_pd128(err), eh = _mm256_extractf128_pd(err, 1);
-  DD const sq1 = two_sum(_mm_cvtsd_f64(tl), _mm_cvtsd_f64(el));
-  DD const sq2 = two_sum(_mm_cvtsd_f64(th), _mm_cvtsd_f64(eh));
+  double const sq1 = _mm_cvtsd_f64(tl) + _mm_cvtsd_f64(el);
+  double const sq2 = _mm_cvtsd_f64(th) + _mm_cvtsd_f64(eh);
   // r^T s: lanes 2, 3 of rr and r_2 s_2.
   __m128d const rh = _mm256_extractf128_pd(rr, 1), rlh = _mm256_extractf128_pd(rl, 1);
   DD const t2 = two_prod<true>(r[2], s[2]);
@@ -206,7 +210,7 @@ inline __attribute__((always_inline, target("fma"))) double f_stationary_avx(
   DD const rb = two_sum(ra.hi, t2.hi);
   double const rc = ((_mm_cvtsd_f64(rlh) + _mm_cvtsd_f64(_mm_unpackhi_pd(rlh, rlh))) + t2.lo) +
                     (ra.lo + rb.lo);
-  return stationary_combine<true>(lambda, two_sum(rb.hi, rc), sq1, sq2);
+  return stationary_combine(lambda, rb.hi + rc, sq1, sq2);
 }
 #endif
 
