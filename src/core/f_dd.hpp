@@ -98,10 +98,13 @@ PW85_ALWAYS_INLINE bool f_eval_dd_impl(double lambda, Vec3 const &r, Sym3 const 
 // each rounded to double (the unevaluated pair a + c, one rounding). The
 // double-double work is in the sums, whose terms cancel; here the terms are
 // positive except the one subtraction, and 2 r^T s ~ 2 s^T Q s ~ 2 phi when
-// s is close to Q^{-1} r (the only case where the form is used), so the
-// result errs by at most ~7u relative: u/2 for each rounded sum and for
-// 1 - lambda, u/2 per operation, the subtraction at most doubling the
-// relative errors of its operands (docs/methods.md, (M11)).
+// s is close to Q^{-1} r, so the result then errs by at most ~7u relative:
+// u/2 for each rounded sum and for 1 - lambda, u/2 per operation, the
+// subtraction at most doubling the relative errors of its operands
+// (docs/methods.md, (M11)). DEFAULT (default.cpp) uses the form only where
+// its bound says s is that close. BRENT (brent.cpp) uses it on its
+// Cholesky s, which in the class [0.001, 1000] can be farther; BRENT's
+// error estimate (methods.cpp, eq. (M10)) does not rely on this bound.
 PW85_ALWAYS_INLINE double stationary_combine(double lambda, double rs, double sq1,
                                              double sq2) noexcept {
   double const om = 1.0 - lambda;
