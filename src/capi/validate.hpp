@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "../core/status.hpp"
-#include "../core/magnitude.hpp"
 #include "../core/screen.hpp"
 #include "../core/sym3.hpp"
 
@@ -66,7 +65,7 @@ inline bool screen_contact_pair(double const *r, double const *q1, double const 
   D2 const mb = v2::max(v2::max(v2::abs(b01), v2::abs(b23)), v2::abs(b45));
   double const m1 = ma[0] > ma[1] ? ma[0] : ma[1], m2 = mb[0] > mb[1] ? mb[0] : mb[1];
   double const r0 = std::fabs(r[0]), r1 = std::fabs(r[1]), r2 = std::fabs(r[2]);
-  double const rm = max_abs(r, kDim);
+  double const rm = r0 > r1 ? (r0 > r2 ? r0 : r2) : (r1 > r2 ? r1 : r2);  // max |r_i|
   bool const in = (r0 < hi) & (r1 < hi) & (r2 < hi) & (rm > lo) & (m1 > lo) & (m1 < hi) &
                   (m2 > lo) & (m2 < hi);
   return in & ldl_pivots_positive(a01, a23, a45, b01, b23, b45);
