@@ -1,4 +1,7 @@
-// PW85_METHOD_DEFAULT (docs/methods.md, section "DEFAULT"):
+// PW85_METHOD_DEFAULT (docs/methods.md, section "DEFAULT"). On x86-64-v4,
+// unless both matrices are nearly round, first the rational step
+// (rational_iterate below: f from its seven coefficients in double-double,
+// f_rational_dd.hpp); when it declines, and on other CPUs:
 //  0. from the start (M22) (start.hpp: Newton on the fixed-point equation of
 //     (M19) in logarithmic coordinates), a safeguarded
 //     Halley iteration as NEWTON's (newton.cpp) but with f and its
@@ -28,6 +31,7 @@
 #include "contact.hpp"
 #include "f_adj.hpp"
 #include "f_dd.hpp"
+#include "f_rational_dd.hpp"
 #include "isa.hpp"
 #include "newton.hpp"
 
@@ -271,15 +275,111 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
   return res.mu2_error <= kDefaultRelAccuracy * res.mu2 ? kOk : kInaccurate;
 }
 
+PW85_ALWAYS_INLINE double default_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
+  return log_newton_start<kStartMin, kStartMax>(r, q1, q2, kStartTol);
+}
+
 #if PW85_ISA_DISPATCH
-// x86-64-v4 (AVX-512: 32 vector registers, fewer spills) variant, chosen at
-// run time; no contraction (-ffp-contract=off, src/meson.build), so the same
-// IEEE operations in the same order as the baseline (docs/methods.md,
-// "Instruction sets"). A v3 (AVX2) variant
-// measured no faster than the baseline and is not built.
+// Relative error of f from f_eval_rational (f_rational_dd.hpp): 2.2 u from
+// the coefficients, about 13 u from the evaluation of A / B and s t.
+constexpr double kRationalRel = 16.0 * kU;
+
+// The rational step (docs/methods.md, "DEFAULT on x86-64-v4"): from the
+// start (M22), Halley steps (M8) on f evaluated from the seven
+// double-double coefficients (f_rational_dd.hpp), whose error does not grow
+// with the conditioning of Q(lambda), until the quartic Taylor model (M18)
+// at the current lambda is accurate: then mu2 = f + the model's increment,
+// with error kRationalRel f (plus one rounding) and the error of the model
+// and of lambda (M10). False (the caller then runs the general method) when
+// an evaluation fails or the iteration does not settle.
+PW85_ALWAYS_INLINE bool rational_iterate(RationalDD const &k, double lambda0,
+                                         MethodResult &res) noexcept {
+  double lo = 0.0, hi = 1.0, lambda = lambda0;
+  RatEval e;
+  res.iterations = 0;
+  for (int it = 0; it < kAdjMaxIter; ++it) {
+    ++res.iterations;
+    if (!f_eval_rational(lambda, k, e)) return false;
+    if (e.df > 0.0)
+      lo = lambda;
+    else
+      hi = lambda;
+    double const a = -e.d2f;
+    double step;
+    double const den = 2.0 * e.d2f * e.d2f - e.df * e.d3f;
+    if (a > 0.0 && den > 0.0)
+      step = -2.0 * e.df * e.d2f / den;  // Halley, eq. (M8)
+    else if (a > 0.0)
+      step = e.df / a;
+    else
+      step = 0.5 * (lo + hi) - lambda;
+    double const next = lambda + step;
+    bool const inside = next > lo && next < hi;
+    bool const tiny = std::fabs(step) <= 2.0 * kU * lambda;
+    bool near = (a > 0.0) & (tiny | (inside & (e.df * e.df <= 2.0 * a * kExtrapGap * e.f)));
+    opaque(near);
+    if (near) {
+      // As in step 1 of default_body: the quartic model's truncation counted
+      // twice, and the error edf of f' (a bound on how well lambda is known).
+      double const h = tiny ? 0.0 : step;
+      double const h2 = h * h;
+      double const trunc = std::fabs(e.d4f * h2 * h2) * kInv24;
+      double const err_l = e.edf * std::fabs(h) + e.edf * e.edf / (2.0 * a) + 2.0 * trunc;
+      double const err = (kRationalRel + kU) * e.f + err_l;
+      bool done = err <= kFastRel * e.f;
+      opaque(done);
+      if (done) {
+        double const corr =
+            h * (e.df + h * (0.5 * e.d2f + h * (e.d3f * kInv6 + h * e.d4f * kInv24)));
+        res.mu2 = e.f + corr;
+        res.lambda = lambda + h;
+        res.mu2_error = err;
+        return true;
+      }
+    }
+    if (tiny) return false;
+    lambda = inside ? next : 0.5 * (lo + hi);
+  }
+  return false;
+}
+
+// x86-64-v4 variant, chosen at run time: the rational step above, then,
+// when it declines, the general method from the same start (compiled for
+// v4 with the same IEEE operations as the baseline: -ffp-contract=off,
+// src/meson.build). The coefficients come first in program order: their
+// independent vector work then overlaps with the start's dependency chain
+// (measured: 9-14 ns per call less than the other order).
+// (A separate function: inlined into default_v4 together with default_body
+// it measured 8 ns per call slower.)
+__attribute__((target("arch=x86-64-v4"), noinline)) bool rational_v4(
+    Vec3 const &r, Sym3 const &q1, Sym3 const &q2, MethodResult &res) noexcept {
+  RationalDD k;
+  bool const coef_ok = rational_coefficients_dd(r, q1, q2, k);
+  double const lambda0 = default_start(r, q1, q2);
+  return coef_ok && rational_iterate(k, lambda0, res);
+}
+
+// tr(Q)^3 <= kRoundTr det(Q): eigenvalue ratios below about 16 (27 for a
+// sphere, 364.5 for eigenvalues 1, 1, 16). For two such matrices the double
+// adjugate exit of step 1 is taken by 98 % of the pairs and is faster than
+// the rational step (docs/methods.md, "DEFAULT on x86-64-v4").
+constexpr double kRoundTr = 400.0;
+PW85_ALWAYS_INLINE bool roundish(Sym3 const &q) noexcept {
+  double const t = (q[0] + q[3]) + q[5];
+  double const det = q[0] * (q[3] * q[5] - q[4] * q[4]) - q[1] * (q[1] * q[5] - q[4] * q[2]) +
+                     q[2] * (q[1] * q[4] - q[3] * q[2]);
+  return t * t * t <= kRoundTr * det;
+}
+
 __attribute__((target("arch=x86-64-v4"))) Status default_v4(Vec3 const &r, Sym3 const &q1,
                                                              Sym3 const &q2,
                                                              MethodResult &res) noexcept {
+#ifndef PW85_NO_ROUND
+  bool round = roundish(q1) & roundish(q2);
+  opaque(round);
+  if (round) return default_body(r, q1, q2, res);
+#endif
+  if (rational_v4(r, q1, q2, res)) return kOk;
   return default_body(r, q1, q2, res);
 }
 #endif
