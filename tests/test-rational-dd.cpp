@@ -1,0 +1,277 @@
+/* The rational step of PW85_METHOD_DEFAULT on x86-64-v4 (src/core/
+ * f_rational_dd.hpp; docs/methods.md, "DEFAULT on x86-64-v4"), tested at
+ * the library level: the one test program that includes internal headers,
+ * because the public API cannot tell which path a call took. It checks the
+ * error bounds the code states, against references computed here in
+ * __float128 from the same double inputs (every product of two doubles is
+ * exact in binary128; the reference coefficients are within ~1e-30 relative
+ * for the conditioning of these pairs):
+ *  - whenever rational_coefficients_dd accepts, each of the seven
+ *    coefficients (M13) is within 2.2 u of the exact value;
+ *  - f_eval_rational's f is within kRationalRel = 16 u of the exact f (from
+ *    the exact coefficients), and its f' within the bound edf it returns;
+ *  - a pair whose coefficients cancel beyond what the double-double sums
+ *    can certify (det Q1 ~ 1e-15 of its terms) is declined.
+ * Skipped where the library has no x86-64-v4 variants (CPU without AVX-512,
+ * or built with -Disa_dispatch=false). */
+#include <cmath>
+#include <cstdio>
+
+#include <glib.h>
+
+#include "f_rational_dd.hpp"
+
+namespace {
+
+#if PW85_ISA_DISPATCH && defined(__SIZEOF_FLOAT128__)
+typedef __float128 real;
+constexpr double kU = 0x1p-53;
+
+struct Pair {
+  pw85::Vec3 r;
+  pw85::Sym3 q1, q2;
+};
+
+// The kernel and the evaluation compiled for x86-64-v4, as in the library
+// (default.cpp inlines them into its v4 variant).
+__attribute__((target("arch=x86-64-v4"), noinline)) bool coefficients_v4(Pair const &p,
+                                                                        pw85::RationalDD &k) {
+  return pw85::rational_coefficients_dd(p.r, p.q1, p.q2, k);
+}
+
+__attribute__((target("arch=x86-64-v4"), noinline)) bool eval_v4(double lambda,
+                                                                pw85::RationalDD const &k,
+                                                                pw85::RatEval &e) {
+  return pw85::f_eval_rational(lambda, k, e);
+}
+
+// splitmix64: a fixed sequence of pairs.
+struct Rng {
+  unsigned long long s;
+  double uniform() {
+    unsigned long long z = (s += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    return (double)(z >> 11) * 0x1p-53;
+  }
+  double normal() {
+    double const u1 = uniform() + 0x1p-60, u2 = uniform();
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
+  }
+};
+
+// Q = R diag(a^2) R^T, R from a random unit quaternion, semi-axes a
+// log-uniform in [lo, hi]; r of random direction and length from deep
+// overlap to far apart.
+void random_q(Rng &g, double lo, double hi, pw85::Sym3 &q, double &amax) {
+  double a[3];
+  amax = 0.0;
+  for (double &x : a) {
+    x = std::exp(std::log(lo) + (std::log(hi) - std::log(lo)) * g.uniform());
+    amax = x > amax ? x : amax;
+  }
+  double w = g.normal(), x = g.normal(), y = g.normal(), z = g.normal();
+  double const n = std::sqrt(w * w + x * x + y * y + z * z);
+  w /= n, x /= n, y /= n, z /= n;
+  double const m[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
+                          {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
+                          {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
+  int idx = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      double s = 0.0;
+      for (int k = 0; k < 3; ++k) s += a[k] * a[k] * m[i][k] * m[j][k];
+      q[idx++] = s;
+    }
+}
+
+Pair random_pair(Rng &g, double lo, double hi) {
+  Pair p;
+  double a1, a2;
+  random_q(g, lo, hi, p.q1, a1);
+  random_q(g, lo, hi, p.q2, a2);
+  double d[3] = {g.normal(), g.normal(), g.normal()};
+  double const nd = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  double const dist = (a1 + a2) * std::pow(10.0, -2.0 + 2.5 * g.uniform());
+  for (int k = 0; k < 3; ++k) p.r[k] = dist * d[k] / nd;
+  return p;
+}
+
+// Full symmetric matrix of Sym3 storage (00 01 02 11 12 22).
+void full(pw85::Sym3 const &q, real m[3][3]) {
+  int const idx[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m[i][j] = q[idx[i][j]];
+}
+
+void adjugate(real const m[3][3], real c[3][3]) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      int const i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+      c[i][j] = m[i1][j1] * m[i2][j2] - m[i1][j2] * m[i2][j1];
+    }
+}
+
+real quad(real const c[3][3], pw85::Vec3 const &r) {
+  real s = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) s += c[i][j] * (real)r[i] * (real)r[j];
+  return s;
+}
+
+real trace_product(real const a[3][3], real const b[3][3]) {
+  real s = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) s += a[i][j] * b[j][i];
+  return s;
+}
+
+// The seven coefficients (M13): a0 = r^T adj(Q1) r, a1 = r^T M r,
+// a2 = r^T adj(Q2) r (M = adj(Q1 + Q2) - adj(Q1) - adj(Q2), the mixed
+// adjugate), d0 = det Q1, d1 = tr(adj(Q1) Q2), d2 = tr(Q1 adj(Q2)),
+// d3 = det Q2.
+void exact_coefficients(Pair const &p, real c[7]) {
+  real m1[3][3], m2[3][3], m12[3][3], c1[3][3], c2[3][3], c12[3][3], cm[3][3];
+  full(p.q1, m1);
+  full(p.q2, m2);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m12[i][j] = m1[i][j] + m2[i][j];  // exact: 54 bits
+  adjugate(m1, c1);
+  adjugate(m2, c2);
+  adjugate(m12, c12);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) cm[i][j] = c12[i][j] - c1[i][j] - c2[i][j];
+  c[0] = quad(c1, p.r);
+  c[1] = quad(cm, p.r);
+  c[2] = quad(c2, p.r);
+  c[3] = trace_product(c1, m1) / 3;
+  c[4] = trace_product(c1, m2);
+  c[5] = trace_product(m1, c2);
+  c[6] = trace_product(c2, m2) / 3;
+}
+
+// f = s t A / B and f' from exact coefficients.
+void exact_f(real const c[7], double lambda, real &f, real &df) {
+  real const t = lambda, s = 1 - t;
+  real const A = c[0] * s * s + c[1] * s * t + c[2] * t * t;
+  real const B = c[3] * s * s * s + c[4] * s * s * t + c[5] * s * t * t + c[6] * t * t * t;
+  real const A1 = 2 * (c[2] * t - c[0] * s) + c[1] * (s - t);
+  real const B1 = 3 * (c[6] * t * t - c[3] * s * s) + c[4] * (s * s - 2 * s * t) +
+                  c[5] * (2 * s * t - t * t);
+  real const phi = A / B, phi1 = (A1 - phi * B1) / B;
+  f = s * t * phi;
+  df = (s - t) * phi + s * t * phi1;
+}
+
+double rel(real x, real ref) { return (double)((x - ref) / ref); }
+
+// Classes of bench_contact (semi-axes in [lo, hi]) and needles / discs.
+struct Class {
+  double lo, hi;
+};
+Class const kClasses[] = {{0.5, 2.0}, {0.1, 10.0}, {0.01, 100.0}, {0.001, 1000.0}, {1e-5, 10.0}};
+constexpr int kPairsPerClass = 4000;
+
+void test_coefficients(void) {
+  if (!__builtin_cpu_supports("x86-64-v4")) {
+    g_test_skip("CPU without x86-64-v4 (AVX-512): the rational step is not used");
+    return;
+  }
+  Rng g{20261122};
+  double worst = 0.0;
+  int accepted = 0, total = 0;
+  for (Class const &cl : kClasses)
+    for (int n = 0; n < kPairsPerClass; ++n) {
+      Pair const p = random_pair(g, cl.lo, cl.hi);
+      pw85::RationalDD k;
+      ++total;
+      if (!coefficients_v4(p, k)) continue;
+      ++accepted;
+      real c[7];
+      exact_coefficients(p, c);
+      for (int i = 0; i < 7; ++i) {
+        double const e = std::fabs(rel(k.c[i], c[i]));
+        if (e > worst) worst = e;
+        if (!(e <= 2.2 * kU))
+          g_error("coefficient %d: relative error %.3g u (> 2.2 u), semi-axes [%g, %g]", i,
+                  e / kU, cl.lo, cl.hi);
+      }
+    }
+  g_test_message("coefficients: %d of %d pairs accepted; max relative error %.3f u", accepted,
+                 total, worst / kU);
+  // Most pairs must take the rational step (otherwise it is not tested).
+  g_assert_cmpint(accepted, >=, total * 9 / 10);
+}
+
+void test_f_bounds(void) {
+  if (!__builtin_cpu_supports("x86-64-v4")) {
+    g_test_skip("CPU without x86-64-v4 (AVX-512): the rational step is not used");
+    return;
+  }
+  Rng g{20261123};
+  double worst_f = 0.0, worst_df = 0.0;  // relative to f, and to edf
+  for (Class const &cl : kClasses)
+    for (int n = 0; n < kPairsPerClass; ++n) {
+      Pair const p = random_pair(g, cl.lo, cl.hi);
+      pw85::RationalDD k;
+      if (!coefficients_v4(p, k)) continue;
+      real c[7];
+      exact_coefficients(p, c);
+      double const lambdas[3] = {g.uniform(), 1e-6 + 1e-3 * g.uniform(), 1.0 - 1e-3 * g.uniform()};
+      for (double const lambda : lambdas) {
+        if (!(lambda > 0.0 && lambda < 1.0)) continue;
+        pw85::RatEval e;
+        if (!eval_v4(lambda, k, e)) g_error("f_eval_rational failed at %g", lambda);
+        real f, df;
+        exact_f(c, lambda, f, df);
+        double const ef = std::fabs(rel(e.f, f));
+        double const edf = std::fabs((double)((e.df - df))) / e.edf;
+        worst_f = ef > worst_f ? ef : worst_f;
+        worst_df = edf > worst_df ? edf : worst_df;
+        if (!(ef <= 16.0 * kU))
+          g_error("f: relative error %.3g u (> 16 u) at lambda = %g", ef / kU, lambda);
+        if (!(edf <= 1.0)) g_error("f': error %.3g times its bound at lambda = %g", edf, lambda);
+      }
+    }
+  g_test_message("f: max relative error %.3f u (bound 16 u); f': max error / edf %.3g", worst_f / kU,
+                 worst_df);
+}
+
+void test_declines_cancellation(void) {
+  if (!__builtin_cpu_supports("x86-64-v4")) {
+    g_test_skip("CPU without x86-64-v4 (AVX-512): the rational step is not used");
+    return;
+  }
+  // Q1 = diag(1, 1, 1e-15) rotated: det Q1 = 1e-15 while the terms of its
+  // double-double sum are ~1, a cancellation of 1e15 > 2^45 (the bound's
+  // limit, f_rational_dd.hpp).
+  double const c = std::cos(0.3), s = std::sin(0.3), e = 1e-15;
+  Pair p;
+  p.q1 = pw85::Sym3{{c * c + s * s * e, c * s * (1 - e), 0.0, s * s + c * c * e, 0.0, 1.0}};
+  p.q2 = pw85::Sym3{{2.0, 0.1, 0.2, 3.0, 0.3, 4.0}};
+  p.r = pw85::Vec3{{1.0, 2.0, 3.0}};
+  pw85::RationalDD k;
+  g_assert_false(coefficients_v4(p, k));
+  // The same matrices with the small eigenvalue 1e-6: certified.
+  double const e2 = 1e-6;
+  p.q1 = pw85::Sym3{{c * c + s * s * e2, c * s * (1 - e2), 0.0, s * s + c * c * e2, 0.0, 1.0}};
+  g_assert_true(coefficients_v4(p, k));
+}
+#endif
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  g_test_init(&argc, &argv, NULL);
+#if PW85_ISA_DISPATCH && defined(__SIZEOF_FLOAT128__)
+  g_test_add_func("/rational-dd/coefficients", test_coefficients);
+  g_test_add_func("/rational-dd/f-bounds", test_f_bounds);
+  g_test_add_func("/rational-dd/declines-cancellation", test_declines_cancellation);
+#else
+  g_test_add_func("/rational-dd/skipped", [] {
+    g_test_skip("built without the x86-64-v4 variants (isa_dispatch=false or not GCC 12+ on x86-64)");
+  });
+#endif
+  return g_test_run();
+}
