@@ -20,6 +20,7 @@
 #include <glib.h>
 
 #include "f_rational_dd.hpp"
+#include "../src/tools/bench_common.hpp"
 
 namespace {
 
@@ -45,56 +46,19 @@ __attribute__((target("arch=x86-64-v4"), noinline)) bool eval_v4(double lambda,
   return pw85::f_eval_rational(lambda, k, e);
 }
 
-// splitmix64: a fixed sequence of pairs.
-struct Rng {
-  unsigned long long s;
-  double uniform() {
-    unsigned long long z = (s += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    z ^= z >> 31;
-    return (double)(z >> 11) * 0x1p-53;
-  }
-  double normal() {
-    double const u1 = uniform() + 0x1p-60, u2 = uniform();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
-  }
-};
-
-// Q = R diag(a^2) R^T, R from a random unit quaternion, semi-axes a
-// log-uniform in [lo, hi]; r of random direction and length from deep
+// The scenes of bench_contact (src/tools/bench_common.hpp): semi-axes
+// log-uniform in [lo, hi], random orientations, centre distances from deep
 // overlap to far apart.
-void random_q(Rng &g, double lo, double hi, pw85::Sym3 &q, double &amax) {
-  double a[3];
-  amax = 0.0;
-  for (double &x : a) {
-    x = std::exp(std::log(lo) + (std::log(hi) - std::log(lo)) * g.uniform());
-    amax = x > amax ? x : amax;
-  }
-  double w = g.normal(), x = g.normal(), y = g.normal(), z = g.normal();
-  double const n = std::sqrt(w * w + x * x + y * y + z * z);
-  w /= n, x /= n, y /= n, z /= n;
-  double const m[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
-                          {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
-                          {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
-  int idx = 0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j) {
-      double s = 0.0;
-      for (int k = 0; k < 3; ++k) s += a[k] * a[k] * m[i][k] * m[j][k];
-      q[idx++] = s;
-    }
-}
-
-Pair random_pair(Rng &g, double lo, double hi) {
+Pair random_pair(bench::Rng &g, double lo, double hi) {
   Pair p;
-  double a1, a2;
-  random_q(g, lo, hi, p.q1, a1);
-  random_q(g, lo, hi, p.q2, a2);
-  double d[3] = {g.normal(), g.normal(), g.normal()};
-  double const nd = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  double const dist = (a1 + a2) * std::pow(10.0, -2.0 + 2.5 * g.uniform());
-  for (int k = 0; k < 3; ++k) p.r[k] = dist * d[k] / nd;
+  double a[3], rot[3][3];
+  bench::random_axes(g, lo, hi, a, rot);
+  double const a1 = std::fmax(a[0], std::fmax(a[1], a[2]));
+  bench::q_from_axes(a, rot, p.q1.a);
+  bench::random_axes(g, lo, hi, a, rot);
+  double const a2 = std::fmax(a[0], std::fmax(a[1], a[2]));
+  bench::q_from_axes(a, rot, p.q2.a);
+  bench::random_offset(g, a1 + a2, bench::kContactSpan, p.r.x);
   return p;
 }
 
@@ -178,7 +142,7 @@ void test_coefficients(void) {
     g_test_skip("CPU without x86-64-v4 (AVX-512): the rational step is not used");
     return;
   }
-  Rng g{20261122};
+  bench::Rng g{20261122};
   double worst = 0.0;
   int accepted = 0, total = 0;
   for (Class const &cl : kClasses)
@@ -209,7 +173,7 @@ void test_f_bounds(void) {
     g_test_skip("CPU without x86-64-v4 (AVX-512): the rational step is not used");
     return;
   }
-  Rng g{20261123};
+  bench::Rng g{20261123};
   double worst_f = 0.0, worst_df = 0.0;  // relative to f, and to edf
   for (Class const &cl : kClasses)
     for (int n = 0; n < kPairsPerClass; ++n) {
