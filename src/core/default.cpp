@@ -65,6 +65,65 @@ constexpr int kDDMaxBisect = 80;
 // product without -freciprocal-math).
 constexpr double kInv6 = 1.0 / 6.0, kInv24 = 1.0 / 24.0;
 
+// DEFAULT's start, eq. (M22) (start.hpp).
+PW85_ALWAYS_INLINE double default_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
+  return log_newton_start<kStartMin, kStartMax>(r, q1, q2, kStartTol);
+}
+
+// The parts shared by the two Halley iterations below (step 1 of
+// default_body, rational_iterate): E is an evaluation with f, df, d2f, d3f,
+// d4f at lambda.
+struct HalleyDecision {
+  double a, step, next;  // a = -f''; next = lambda + step
+  bool inside, tiny, near;
+};
+
+// Narrows [lo, hi] by the sign of f', takes the safeguarded Halley step (M8)
+// (Newton where Halley's denominator is not positive, bisection where f is
+// not concave), and decides whether lambda is near enough for the quartic
+// model (M18): f' small (gap f'^2 / 2a below kExtrapGap f) with the step
+// inside the bracket, or the step below rounding.
+template <class E>
+PW85_ALWAYS_INLINE HalleyDecision halley_decide(double lambda, E const &e, double &lo,
+                                                double &hi) noexcept {
+  if (e.df > 0.0)
+    lo = lambda;
+  else
+    hi = lambda;
+  double const a = -e.d2f;
+  double step;
+  double const den = 2.0 * e.d2f * e.d2f - e.df * e.d3f;
+  if (a > 0.0 && den > 0.0)
+    step = -2.0 * e.df * e.d2f / den;  // Halley, eq. (M8)
+  else if (a > 0.0)
+    step = e.df / a;
+  else
+    step = 0.5 * (lo + hi) - lambda;
+  double const next = lambda + step;
+  bool const inside = next > lo && next < hi;
+  bool const tiny = std::fabs(step) <= 2.0 * kU * lambda;
+  // One branch per decision (opaque, isa.hpp): without it GCC tests
+  // each comparison in turn, and their outcomes vary from pair to pair.
+  bool near = (a > 0.0) & (tiny | (inside & (e.df * e.df <= 2.0 * a * kExtrapGap * e.f)));
+  opaque(near);
+  return HalleyDecision{a, step, next, inside, tiny, near};
+}
+
+// Error of the quartic Taylor model (M18) at lambda with increment h: its
+// truncation estimated by the last term, counted twice, and the error edf
+// of f' (how well the maximiser is known, eq. (M10)).
+PW85_ALWAYS_INLINE double model_error(double edf, double h, double a, double d4f) noexcept {
+  double const h2 = h * h;
+  double const trunc = std::fabs(d4f * h2 * h2) * kInv24;
+  return edf * std::fabs(h) + edf * edf / (2.0 * a) + 2.0 * trunc;
+}
+
+// The model's increment f(lambda + h) - f(lambda).
+template <class E>
+PW85_ALWAYS_INLINE double model_increment(double h, E const &e) noexcept {
+  return h * (e.df + h * (0.5 * e.d2f + h * (e.d3f * kInv6 + h * e.d4f * kInv24)));
+}
+
 // The whole method, inlined into one function per instruction-set level
 // (contact_default below). Its hot part, the start and the adjugate
 // iteration of step 1, is inline (start.hpp, f_adj.hpp) and so compiled for
@@ -74,7 +133,7 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
   res.iterations = 0;
   Sym3 const d = difference(q2, q1);
   // Step 1: Halley iteration with adjugate evaluations (f_adj.hpp).
-  double const lambda0 = log_newton_start<kStartMin, kStartMax>(r, q1, q2, kStartTol);
+  double const lambda0 = default_start(r, q1, q2);
   double start = lambda0;
   {
     double lo = 0.0, hi = 1.0, lambda = lambda0;
@@ -83,27 +142,10 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
       ++res.iterations;
       if (!f_eval_adj(lambda, r, q1, q2, d, e)) break;
       start = lambda;
-      if (e.df > 0.0)
-        lo = lambda;
-      else
-        hi = lambda;
-      double const a = -e.d2f;
-      double step;
-      double const den = 2.0 * e.d2f * e.d2f - e.df * e.d3f;
-      if (a > 0.0 && den > 0.0)
-        step = -2.0 * e.df * e.d2f / den;  // Halley, eq. (M8)
-      else if (a > 0.0)
-        step = e.df / a;
-      else
-        step = 0.5 * (lo + hi) - lambda;
-      double const next = lambda + step;
-      bool const inside = next > lo && next < hi;
-      bool const tiny = std::fabs(step) <= 2.0 * kU * lambda;
-      // One branch per decision (opaque, isa.hpp): without it GCC tests
-      // each comparison in turn, and their outcomes vary from pair to pair.
-      bool near = (a > 0.0) & (tiny | (inside & (e.df * e.df <= 2.0 * a * kExtrapGap * e.f)));
-      opaque(near);
-      if (near) {
+      HalleyDecision const hd = halley_decide(lambda, e, lo, hi);
+      double const a = hd.a, step = hd.step, next = hd.next;
+      bool const inside = hd.inside, tiny = hd.tiny;
+      if (hd.near) {
         // Error terms (eqs. (M10), (M17)): E bounds the error of s.
         Vec3 const E = adj_error(e, r, q1, q2);
         double const p = lambda * (1.0 - lambda), p1 = std::fabs(1.0 - 2.0 * lambda);
@@ -116,17 +158,13 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
         Vec3 const ar{{std::fabs(r[0]), std::fabs(r[1]), std::fabs(r[2])}};
         double const edf = p1 * dot(ar, E) + 2.0 * p * dot(as, multiply(da, E)) +
                            4.0 * kU * (p1 * e.phi + p * std::fabs(e.dphi));
+        // Quartic Taylor model at lambda (eq. (M18)).
         double const h = tiny ? 0.0 : step;
-        // Quartic Taylor model at lambda (eq. (M18)); its truncation is
-        // estimated by its last term, counted twice below.
-        double const h2 = h * h;
-        double const trunc = std::fabs(e.d4f * h2 * h2) * kInv24;
-        double const err_l = edf * std::fabs(h) + edf * edf / (2.0 * a) + 2.0 * trunc;
+        double const err_l = model_error(edf, h, a, e.d4f);
         bool done = (err_l <= kExtrapBudget * e.f) | (std::fabs(e.df) <= 2.0 * edf) | tiny;
         opaque(done);
         if (done) {
-          double const corr =
-              h * (e.df + h * (0.5 * e.d2f + h * (e.d3f * kInv6 + h * e.d4f * kInv24)));
+          double const corr = model_increment(h, e);
           // First-order error of the double f: |r|^T E + rounding of r^T s.
           double const err1 =
               p * (dot(ar, E) + 3.0 * kU * dot(ar, as)) + 4.0 * kU * e.f + err_l;
@@ -275,10 +313,6 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
   return res.mu2_error <= kDefaultRelAccuracy * res.mu2 ? kOk : kInaccurate;
 }
 
-PW85_ALWAYS_INLINE double default_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
-  return log_newton_start<kStartMin, kStartMax>(r, q1, q2, kStartTol);
-}
-
 #if PW85_ISA_DISPATCH
 // Relative error of f from f_eval_rational (f_rational_dd.hpp): 2.2 u from
 // the coefficients, about 13 u from the evaluation of A / B and s t.
@@ -300,45 +334,23 @@ PW85_ALWAYS_INLINE bool rational_iterate(RationalDD const &k, double lambda0,
   for (int it = 0; it < kAdjMaxIter; ++it) {
     ++res.iterations;
     if (!f_eval_rational(lambda, k, e)) return false;
-    if (e.df > 0.0)
-      lo = lambda;
-    else
-      hi = lambda;
-    double const a = -e.d2f;
-    double step;
-    double const den = 2.0 * e.d2f * e.d2f - e.df * e.d3f;
-    if (a > 0.0 && den > 0.0)
-      step = -2.0 * e.df * e.d2f / den;  // Halley, eq. (M8)
-    else if (a > 0.0)
-      step = e.df / a;
-    else
-      step = 0.5 * (lo + hi) - lambda;
-    double const next = lambda + step;
-    bool const inside = next > lo && next < hi;
-    bool const tiny = std::fabs(step) <= 2.0 * kU * lambda;
-    bool near = (a > 0.0) & (tiny | (inside & (e.df * e.df <= 2.0 * a * kExtrapGap * e.f)));
-    opaque(near);
-    if (near) {
-      // As in step 1 of default_body: the quartic model's truncation counted
-      // twice, and the error edf of f' (a bound on how well lambda is known).
-      double const h = tiny ? 0.0 : step;
-      double const h2 = h * h;
-      double const trunc = std::fabs(e.d4f * h2 * h2) * kInv24;
-      double const err_l = e.edf * std::fabs(h) + e.edf * e.edf / (2.0 * a) + 2.0 * trunc;
-      double const err = (kRationalRel + kU) * e.f + err_l;
+    HalleyDecision const hd = halley_decide(lambda, e, lo, hi);
+    if (hd.near) {
+      // As in step 1 of default_body, with the error edf of the rational f'.
+      double const h = hd.tiny ? 0.0 : hd.step;
+      double const err = (kRationalRel + kU) * e.f + model_error(e.edf, h, hd.a, e.d4f);
       bool done = err <= kFastRel * e.f;
       opaque(done);
       if (done) {
-        double const corr =
-            h * (e.df + h * (0.5 * e.d2f + h * (e.d3f * kInv6 + h * e.d4f * kInv24)));
+        double const corr = model_increment(h, e);
         res.mu2 = e.f + corr;
         res.lambda = lambda + h;
         res.mu2_error = err;
         return true;
       }
     }
-    if (tiny) return false;
-    lambda = inside ? next : 0.5 * (lo + hi);
+    if (hd.tiny) return false;
+    lambda = hd.inside ? hd.next : 0.5 * (lo + hi);
   }
   return false;
 }

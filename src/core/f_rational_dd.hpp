@@ -19,6 +19,7 @@
 
 #include <cmath>
 
+#include "f_derivatives.hpp"
 #include "isa.hpp"
 #include "sym3.hpp"
 
@@ -208,14 +209,9 @@ PW85_ALWAYS_INLINE bool f_eval_rational(double lambda, RationalDD const &k,
   double const phi2 = (A2 - 2.0 * phi1 * B1 - phi * B2) * ib;
   double const phi3 = -(3.0 * phi2 * B1 + 3.0 * phi1 * B2 + phi * B3) * ib;
   double const phi4 = -(4.0 * phi3 * B1 + 6.0 * phi2 * B2 + 4.0 * phi1 * B3) * ib;
-  double const p = st, p1 = s - t;
   e.lambda = lambda;
-  e.phi = phi;
-  e.dphi = phi1;
-  e.f = p * phi;
-  e.df = p1 * phi + p * phi1;
-  e.d2f = -2.0 * phi + 2.0 * p1 * phi1 + p * phi2;
-  e.d3f = -6.0 * phi1 + 3.0 * p1 * phi2 + p * phi3;
+  set_f_from_phi(lambda, phi, phi1, phi2, phi3, e);  // f = p phi, eq. (M12)
+  double const p = lambda * (1.0 - lambda), p1 = 1.0 - 2.0 * lambda;
   e.d4f = -12.0 * phi2 + 4.0 * p1 * phi3 + p * phi4;
   // Error of f' = p1 phi + p (A1 - phi B1) / B: the terms of A1 and B1 in
   // absolute value, with their few roundings, and the error of phi.
