@@ -4,8 +4,8 @@
  * because the public API cannot tell which path a call took. It checks the
  * error bounds the code states, against references computed here in
  * __float128 from the same double inputs (every product of two doubles is
- * exact in binary128; the reference coefficients are within ~1e-30 relative
- * for the conditioning of these pairs):
+ * exact in binary128, and the few roundings of the references, at 2^-113
+ * of their terms, stay far below u for the cancellations these pairs have):
  *  - whenever rational_coefficients_dd accepts, each of the seven
  *    coefficients (M13) is within 2.2 u of the exact value;
  *  - f_eval_rational's f is within kRationalRel = 16 u of the exact f (from
@@ -15,7 +15,6 @@
  * Skipped where the library has no x86-64-v4 variants (CPU without AVX-512,
  * or built with -Disa_dispatch=false). */
 #include <cmath>
-#include <cstdio>
 
 #include <glib.h>
 
