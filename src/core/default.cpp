@@ -1,7 +1,8 @@
 // PW85_METHOD_DEFAULT (docs/methods.md, section "DEFAULT"). On x86-64-v4,
 // unless both matrices are nearly round, first the rational step
 // (rational_iterate below: f from its seven coefficients in double-double,
-// f_rational_dd.hpp); when it declines, and on other CPUs:
+// f_rational_dd.hpp), from the grid start (M24) (start_scan.hpp); when it
+// declines, and on other CPUs:
 //  0. from the start (M22) (start.hpp: Newton on the fixed-point equation of
 //     (M19) in logarithmic coordinates), a safeguarded
 //     Halley iteration as NEWTON's (newton.cpp) but with f and its
@@ -34,6 +35,7 @@
 #include "f_rational_dd.hpp"
 #include "isa.hpp"
 #include "newton.hpp"
+#include "start_scan.hpp"
 
 namespace pw85 {
 
@@ -319,7 +321,8 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
 constexpr double kRationalRel = 16.0 * kU;
 
 // The rational step (docs/methods.md, "DEFAULT on x86-64-v4"): from the
-// start (M22), Halley steps (M8) on f evaluated from the seven
+// start (M24) (or (M22) where (M24) finds no bracket), Halley steps (M8)
+// on f evaluated from the seven
 // double-double coefficients (f_rational_dd.hpp), whose error does not grow
 // with the conditioning of Q(lambda), until the quartic Taylor model (M18)
 // at the current lambda is accurate: then mu2 = f + the model's increment,
@@ -356,7 +359,7 @@ PW85_ALWAYS_INLINE bool rational_iterate(RationalDD const &k, double lambda0,
 }
 
 // x86-64-v4 variant, chosen at run time: the rational step above, then,
-// when it declines, the general method from the same start (compiled for
+// when it declines, the general method from its own start (M22) (compiled for
 // v4 with the same IEEE operations as the baseline: -ffp-contract=off,
 // src/meson.build). The coefficients come first in program order: their
 // independent vector work then overlaps with the start's dependency chain
@@ -367,7 +370,8 @@ __attribute__((target("arch=x86-64-v4"), noinline)) bool rational_v4(
     Vec3 const &r, Sym3 const &q1, Sym3 const &q2, MethodResult &res) noexcept {
   RationalDD k;
   bool const coef_ok = rational_coefficients_dd(r, q1, q2, k);
-  double const lambda0 = default_start(r, q1, q2);
+  double lambda0 = scan_start(r, q1, q2);
+  if (lambda0 < 0.0) lambda0 = default_start(r, q1, q2);
   return coef_ok && rational_iterate(k, lambda0, res);
 }
 

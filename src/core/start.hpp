@@ -129,11 +129,17 @@ PW85_ALWAYS_INLINE double fixed_point_start(Vec3 const &r, Sym3 const &q1, Sym3 
 // together), which keeps the products of three a's in the step from
 // overflowing. A lambda outside (0, 1) (NaN from an overflow, or a
 // rounding-dominated quartic) falls back to (M7).
-template <int kMin, int kMax>
-PW85_ALWAYS_INLINE double log_newton_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                           double tol) noexcept {
-  static_assert(1 <= kMin && kMin <= kMax, "step counts");
-  constexpr double kClamp = 1.6;
+// The quartics of (M22) (scaled coefficients c_ik, k = 0..4) and the first
+// (M19) iterate x0.
+struct StartQuartics {
+  double a1[5], a2[5];
+  double x0;
+};
+
+// kScaled = false (start_scan.hpp): the coefficients unscaled and no x0.
+template <bool kScaled = true>
+PW85_ALWAYS_INLINE void start_quartics(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                       StartQuartics &sq) noexcept {
   Sym3 q12;
   for (int i = 0; i < kSym; ++i) q12[i] = q1[i] + q2[i];
   Sym3 const c1 = adjugate3(q1), c2 = adjugate3(q2);
@@ -144,8 +150,8 @@ PW85_ALWAYS_INLINE double log_newton_start(Vec3 const &r, Sym3 const &q1, Sym3 c
   // a_i(1) (x = 1, lambda = 1/2: n = adj(Q1 + Q2) r), the first (M19) iterate.
   double s1, s2;
   detail::support_squares(n12, q1, q2, s1, s2);
-  double x = std::sqrt(s1 / s2);
-  double const sc = 1.0 / (s1 + s2);
+  sq.x0 = kScaled ? std::sqrt(s1 / s2) : 0.0;
+  double const sc = kScaled ? 1.0 / (s1 + s2) : 1.0;
   double const det1 = det_with_adjugate(q1, c1) * sc;
   double const det2 = det_with_adjugate(q2, c2) * sc;
   // t1 = tr(adj(Q1) Q2), t2 = tr(Q1 adj(Q2)) (scaled), the middle terms of
@@ -161,12 +167,28 @@ PW85_ALWAYS_INLINE double log_newton_start(Vec3 const &r, Sym3 const &q1, Sym3 c
   Vec3 const p = multiply(q2, n1), q = multiply(q1, n2);
   double const mp = dot(m, p) * sc, mq = dot(m, q) * sc;
   // c_ik (scaled): a1 = n1.Q1n1 + 2x m.Q1n1 + x^2 (m.Q1m + 2 n2.Q1n1) + 2x^3 n2.Q1m + x^4 n2.Q1n2.
-  double const a10 = det1 * rn1, a11 = 2.0 * det1 * rm;
-  double const a12 = (t1 * rm - mp) + 2.0 * det1 * rn2;
-  double const a13 = 2.0 * mq, a14 = dot(n2, q) * sc;
-  double const a24 = det2 * rn2, a23 = 2.0 * det2 * rm;
-  double const a22 = (t2 * rm - mq) + 2.0 * det2 * rn1;
-  double const a21 = 2.0 * mp, a20 = dot(n1, p) * sc;
+  sq.a1[0] = det1 * rn1;
+  sq.a1[1] = 2.0 * det1 * rm;
+  sq.a1[2] = (t1 * rm - mp) + 2.0 * det1 * rn2;
+  sq.a1[3] = 2.0 * mq;
+  sq.a1[4] = dot(n2, q) * sc;
+  sq.a2[4] = det2 * rn2;
+  sq.a2[3] = 2.0 * det2 * rm;
+  sq.a2[2] = (t2 * rm - mq) + 2.0 * det2 * rn1;
+  sq.a2[1] = 2.0 * mp;
+  sq.a2[0] = dot(n1, p) * sc;
+}
+
+// The Newton iteration of (M22) from x0 (start_quartics).
+template <int kMin, int kMax>
+PW85_ALWAYS_INLINE double log_newton_iterate(StartQuartics const &sq, double x0, double tol,
+                                             Vec3 const &r, Sym3 const &q1,
+                                             Sym3 const &q2) noexcept {
+  static_assert(1 <= kMin && kMin <= kMax, "step counts");
+  constexpr double kClamp = 1.6;
+  double const a10 = sq.a1[0], a11 = sq.a1[1], a12 = sq.a1[2], a13 = sq.a1[3], a14 = sq.a1[4];
+  double const a20 = sq.a2[0], a21 = sq.a2[1], a22 = sq.a2[2], a23 = sq.a2[3], a24 = sq.a2[4];
+  double x = x0;
   // Coefficients of the derivatives a_i'.
   double const b12 = 2.0 * a12, b13 = 3.0 * a13, b14 = 4.0 * a14;
   double const b22 = 2.0 * a22, b23 = 3.0 * a23, b24 = 4.0 * a24;
@@ -194,6 +216,14 @@ PW85_ALWAYS_INLINE double log_newton_start(Vec3 const &r, Sym3 const &q1, Sym3 c
     }
     x = num / den;
   }
+}
+
+template <int kMin, int kMax>
+PW85_ALWAYS_INLINE double log_newton_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                           double tol) noexcept {
+  StartQuartics sq;
+  start_quartics(r, q1, q2, sq);
+  return log_newton_iterate<kMin, kMax>(sq, sq.x0, tol, r, q1, q2);
 }
 
 }  // namespace pw85
