@@ -179,16 +179,16 @@ PW85_ALWAYS_INLINE void start_quartics(Vec3 const &r, Sym3 const &q1, Sym3 const
   sq.a2[0] = dot(n1, p) * sc;
 }
 
-// The Newton iteration of (M22) from x0 (start_quartics).
+// The Newton iteration of (M22) from sq.x0 (start_quartics).
 template <int kMin, int kMax>
-PW85_ALWAYS_INLINE double log_newton_iterate(StartQuartics const &sq, double x0, double tol,
+PW85_ALWAYS_INLINE double log_newton_iterate(StartQuartics const &sq, double tol,
                                              Vec3 const &r, Sym3 const &q1,
                                              Sym3 const &q2) noexcept {
   static_assert(1 <= kMin && kMin <= kMax, "step counts");
   constexpr double kClamp = 1.6;
   double const a10 = sq.a1[0], a11 = sq.a1[1], a12 = sq.a1[2], a13 = sq.a1[3], a14 = sq.a1[4];
   double const a20 = sq.a2[0], a21 = sq.a2[1], a22 = sq.a2[2], a23 = sq.a2[3], a24 = sq.a2[4];
-  double x = x0;
+  double x = sq.x0;
   // Coefficients of the derivatives a_i'.
   double const b12 = 2.0 * a12, b13 = 3.0 * a13, b14 = 4.0 * a14;
   double const b22 = 2.0 * a22, b23 = 3.0 * a23, b24 = 4.0 * a24;
@@ -223,7 +223,7 @@ PW85_ALWAYS_INLINE double log_newton_start(Vec3 const &r, Sym3 const &q1, Sym3 c
                                            double tol) noexcept {
   StartQuartics sq;
   start_quartics(r, q1, q2, sq);
-  return log_newton_iterate<kMin, kMax>(sq, sq.x0, tol, r, q1, q2);
+  return log_newton_iterate<kMin, kMax>(sq, tol, r, q1, q2);
 }
 
 }  // namespace pw85
