@@ -29,9 +29,11 @@
 
 namespace pw85 {
 
-// Coefficients, in this order: a0, a1, a2, d0, d1, d2, d3.
+// Coefficients, in this order: a0, a1, a2, d0, d1, d2, d3, each times
+// scale, a power of two (f = s t A / B does not depend on it).
 struct RationalDD {
   double c[8];
+  double scale;
 };
 
 #if PW85_ISA_DISPATCH
@@ -100,14 +102,26 @@ PW85_V4 __m512d fold_abs(__m512d x, __m512d y, __m512i ia, __m512i ib) {
 
 }  // namespace rdd
 
-// Computes the seven coefficients into out.c[0..6] (out.c[7] = 0). Returns
-// false when one is not positive or its bound 32 u^2 (sum of |terms|)
-// exceeds 2^-56 times it; otherwise each is within 2.2 u of its exact
-// value (the double-double error, then the rounding to double; d0 and d3,
-// formed as tr(adj(Q) Q) / 3, one more rounding).
+// Computes the seven coefficients, times out.scale, into out.c[0..6]
+// (out.c[7] = 0). Returns false when one is not positive or its bound
+// 32 u^2 (sum of |terms|) exceeds 2^-56 times it; otherwise each is within
+// 2.2 u of its exact value times out.scale (the double-double error, then
+// the rounding to double; d0 and d3, formed as tr(adj(Q) Q) / 3, one more
+// rounding). out.scale = 2^(-3E), T = tr Q1 + tr Q2 in [2^E, 2^(E+1)), so
+// that every d_j times the scale is below 8 (d_j <= T^3): f_eval_rational
+// forms B^5. T is positive and, for inputs within the range of contact.hpp
+// (kSafeLo, kSafeHi), 3E is well inside the exponent range.
 __attribute__((target("arch=x86-64-v4"), always_inline)) inline bool rational_coefficients_dd(
     Vec3 const &r, Sym3 const &q1, Sym3 const &q2, RationalDD &out) noexcept {
   using namespace rdd;
+  // The scale, from the inputs (off the dependency chain of the sums).
+  double const tr = ((q1[0] + q1[3]) + q1[5]) + ((q2[0] + q2[3]) + q2[5]);
+  long long bits;
+  __builtin_memcpy(&bits, &tr, sizeof bits);
+  long long const e = ((bits >> 52) & 0x7FF) - 1023;
+  long long const sbits = (1023 - 3 * e) << 52;
+  double scale;
+  __builtin_memcpy(&scale, &sbits, sizeof scale);
   __m512d const a = _mm512_maskz_loadu_pd(0x3F, q1.a);
   __m512d const b = _mm512_maskz_loadu_pd(0x3F, q2.a);
   __m512d const rv = _mm512_maskz_loadu_pd(0x07, r.x);
@@ -154,7 +168,7 @@ __attribute__((target("arch=x86-64-v4"), always_inline)) inline bool rational_co
   // Lanes: a0, a1, a2, 3 d0, d1, d2, 3 d3, 0.
   __m512d const sum = _mm512_add_pd(t.h, t.l);
   __m512d const third = _mm512_setr_pd(1.0, 1.0, 1.0, 1.0 / 3.0, 1.0, 1.0, 1.0 / 3.0, 0.0);
-  __m512d const coef = _mm512_mul_pd(sum, third);
+  __m512d const coef = _mm512_mul_pd(sum, _mm512_mul_pd(third, _mm512_set1_pd(scale)));
   __m512d const ac1 = _mm512_add_pd(vabs(paqa.h), vabs(sata.h));
   __m512d const ac2 = _mm512_add_pd(vabs(pbqb.h), vabs(sbtb.h));
   __m512d const acm = _mm512_add_pd(_mm512_add_pd(vabs(paqb.h), vabs(pbqa.h)),
@@ -172,6 +186,7 @@ __attribute__((target("arch=x86-64-v4"), always_inline)) inline bool rational_co
   __mmask8 const ok = _mm512_cmp_pd_mask(bound, sum, _CMP_LE_OQ) &
                       _mm512_cmp_pd_mask(sum, _mm512_setzero_pd(), _CMP_GT_OQ);
   _mm512_storeu_pd(out.c, coef);
+  out.scale = scale;
   return (ok & 0x7F) == 0x7F;
 }
 
@@ -203,12 +218,18 @@ PW85_ALWAYS_INLINE bool f_eval_rational(double lambda, RationalDD const &k,
   double const B1 = (e0 * ss + e2 * tt) + 2.0 * e1 * st;
   double const B2 = 2.0 * ((e2 * t - e0 * s) + e1 * (s - t));
   double const B3 = 2.0 * ((e0 + e2) - 2.0 * e1);
+  // phi_k = d^k phi / d lambda^k = N_k / B^(k + 1), from sum_i C(k, i)
+  // phi_i B_(k-i) = A_k: the numerators are products and sums only, so
+  // they are formed while the division runs (B^5 stays in range: the
+  // coefficients are scaled, rational_coefficients_dd).
   double const ib = 1.0 / B;
+  double const ib2 = ib * ib, ib3 = ib2 * ib, ib4 = ib2 * ib2, ib5 = ib4 * ib;
+  double const N1 = A1 * B - A * B1;
+  double const N2 = (A2 * B - A * B2) * B - N1 * (2.0 * B1);
+  double const N3 = -(N2 * (3.0 * B1) + (N1 * (3.0 * B2) + (A * B) * B3) * B);
+  double const N4 = -(N3 * (4.0 * B1) + (N2 * (6.0 * B2) + (N1 * (4.0 * B3)) * B) * B);
   double const phi = A * ib;
-  double const phi1 = (A1 - phi * B1) * ib;
-  double const phi2 = (A2 - 2.0 * phi1 * B1 - phi * B2) * ib;
-  double const phi3 = -(3.0 * phi2 * B1 + 3.0 * phi1 * B2 + phi * B3) * ib;
-  double const phi4 = -(4.0 * phi3 * B1 + 6.0 * phi2 * B2 + 4.0 * phi1 * B3) * ib;
+  double const phi1 = N1 * ib2, phi2 = N2 * ib3, phi3 = N3 * ib4, phi4 = N4 * ib5;
   e.lambda = lambda;
   set_f_from_phi(lambda, phi, phi1, phi2, phi3, e);  // f = p phi, eq. (M12)
   double const p = lambda * (1.0 - lambda), p1 = 1.0 - 2.0 * lambda;

@@ -32,22 +32,16 @@ namespace scan {
 
 #define PW85_V4 __attribute__((target("arch=x86-64-v4"), always_inline)) inline
 
-// a1 - x^2 a2 and a1 + x^2 a2 at the eight lanes of x (Estrin's scheme).
-PW85_V4 void tanh_parts(StartQuartics const &sq, __m512d x, __m512d &num, __m512d &den) {
-  __m512d const x2 = _mm512_mul_pd(x, x);
-  __m512d const a1 = _mm512_fmadd_pd(
-      x2,
-      _mm512_fmadd_pd(x2, _mm512_set1_pd(sq.a1[4]),
-                      _mm512_fmadd_pd(x, _mm512_set1_pd(sq.a1[3]), _mm512_set1_pd(sq.a1[2]))),
-      _mm512_fmadd_pd(x, _mm512_set1_pd(sq.a1[1]), _mm512_set1_pd(sq.a1[0])));
-  __m512d const a2 = _mm512_fmadd_pd(
-      x2,
-      _mm512_fmadd_pd(x2, _mm512_set1_pd(sq.a2[4]),
-                      _mm512_fmadd_pd(x, _mm512_set1_pd(sq.a2[3]), _mm512_set1_pd(sq.a2[2]))),
-      _mm512_fmadd_pd(x, _mm512_set1_pd(sq.a2[1]), _mm512_set1_pd(sq.a2[0])));
-  __m512d const b = _mm512_mul_pd(x2, a2);
-  num = _mm512_sub_pd(a1, b);
-  den = _mm512_add_pd(a1, b);
+PW85_V4 __m512d bc(double v) { return _mm512_set1_pd(v); }
+
+// The sextic sum_n c_n x^n at the eight lanes of x (Estrin's scheme: four
+// levels of FMA after x).
+PW85_V4 __m512d sextic(double const c[7], __m512d x) {
+  __m512d const x2 = _mm512_mul_pd(x, x), x4 = _mm512_mul_pd(x2, x2);
+  __m512d const lo = _mm512_fmadd_pd(x2, _mm512_fmadd_pd(x, bc(c[3]), bc(c[2])),
+                                     _mm512_fmadd_pd(x, bc(c[1]), bc(c[0])));
+  __m512d const hi = _mm512_fmadd_pd(x2, bc(c[6]), _mm512_fmadd_pd(x, bc(c[5]), bc(c[4])));
+  return _mm512_fmadd_pd(x4, hi, lo);
 }
 
 PW85_V4 unsigned positive_mask(__m512d v) {
@@ -87,12 +81,12 @@ alignas(64) constexpr double kScanCoarse[32] = {
     5.56916270856600386e+03, 1.17899175465529188e+04, 2.49592556419145949e+04,
     5.28387446085731863e+04, 1.11859623214142310e+05};
 alignas(64) constexpr double kScanFine[16] = {
-    1.04510530122101430e+00, 1.09224509064026698e+00, 1.14151113446077024e+00,
-    1.19299933802776503e+00, 1.24680993252597805e+00, 1.30304767009791478e+00,
-    1.36182202776302219e+00, 1.42324742053468589e+00, 1.48744342414993436e+00,
-    1.55453500784543408e+00, 1.62465277763291427e+00, 1.69793323054760448e+00,
-    1.77451902036462394e+00, 1.85455923530058953e+00, 1.93820968824103645e+00,
-    2.02563322005863666e+00};
+    1.00000000000000000e+00, 1.05127109637602412e+00, 1.10517091807564771e+00,
+    1.16183424272828306e+00, 1.22140275816016985e+00, 1.28402541668774139e+00,
+    1.34985880757600318e+00, 1.41906754859325712e+00, 1.49182469764127035e+00,
+    1.56831218549016893e+00, 1.64872127070012819e+00, 1.73325301786739527e+00,
+    1.82211880039050889e+00, 1.91554082901389622e+00, 2.01375270747047663e+00,
+    2.11700001661267478e+00};
 
 // Returns lambda, or -1 when the root is outside the coarse grid (or the
 // interpolated lambda is not in (0, 1)).
@@ -100,40 +94,43 @@ __attribute__((target("arch=x86-64-v4"), always_inline)) inline double scan_star
     Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
   StartQuartics sq;
   start_quartics<false>(r, q1, q2, sq);
-  alignas(64) double cn[32], cd[32], fn[16], fd[16];
+  // a1 - x^2 a2 and a1 + x^2 a2 as sextics.
+  double const pn[7] = {sq.a1[0], sq.a1[1], sq.a1[2] - sq.a2[0], sq.a1[3] - sq.a2[1],
+                        sq.a1[4] - sq.a2[2], -sq.a2[3], -sq.a2[4]};
+  double const pdn[7] = {sq.a1[0], sq.a1[1], sq.a1[2] + sq.a2[0], sq.a1[3] + sq.a2[1],
+                         sq.a1[4] + sq.a2[2], sq.a2[3], sq.a2[4]};
   __m512d c_num[4];
-  for (int v = 0; v < 4; ++v) {
-    __m512d den;
-    scan::tanh_parts(sq, _mm512_load_pd(kScanCoarse + 8 * v), c_num[v], den);
-    _mm512_store_pd(cn + 8 * v, c_num[v]);
-    _mm512_store_pd(cd + 8 * v, den);
-  }
+  for (int v = 0; v < 4; ++v) c_num[v] = scan::sextic(pn, _mm512_load_pd(kScanCoarse + 8 * v));
   unsigned const k = scan::first_nonpositive(c_num[0], c_num[1], c_num[2], c_num[3]);
   if (__builtin_expect(k == 0 || k == 32, 0)) return -1.0;
   double const xa = kScanCoarse[k - 1];
   __m512d const xav = _mm512_set1_pd(xa);
-  __m512d f_num[2];
+  __m512d f_num[2], f_den[2];
   for (int v = 0; v < 2; ++v) {
-    __m512d den;
-    scan::tanh_parts(sq, _mm512_mul_pd(xav, _mm512_load_pd(kScanFine + 8 * v)), f_num[v], den);
-    _mm512_store_pd(fn + 8 * v, f_num[v]);
-    _mm512_store_pd(fd + 8 * v, den);
+    __m512d const x = _mm512_mul_pd(xav, _mm512_load_pd(kScanFine + 8 * v));
+    f_num[v] = scan::sextic(pn, x);
+    f_den[v] = scan::sextic(pdn, x);
   }
-  unsigned const j = scan::first_nonpositive16(f_num[0], f_num[1]);
-  // The bracket (t-width h / 17): fine points j - 1, j, with the coarse
-  // points k - 1, k at its ends; y = num / den, y1 > 0 >= y2.
-  double const x1 = j == 0 ? xa : xa * kScanFine[j - 1];
-  double const y1 = j == 0 ? cn[k - 1] / cd[k - 1] : fn[j - 1] / fd[j - 1];
-  double const y2 = j == 16 ? cn[k] / cd[k] : fn[j] / fd[j];
-  // Linear interpolation in t: x = x1 exp(v), v = (h / 17) w, w = y1 / (y1 -
+  // Fine point 0 is the coarse point k - 1 (y > 0), point 15 the coarse
+  // point k (y <= 0): the first non-positive j is in 1..15.
+  unsigned j = scan::first_nonpositive16(f_num[0], f_num[1]);
+  j = j < 1 ? 1 : (j > 15 ? 15 : j);  // (rounding at the shared points)
+  __m512i const i1 = _mm512_set1_epi64(j - 1), i2 = _mm512_set1_epi64(j);
+  double const n1 = _mm512_cvtsd_f64(_mm512_permutex2var_pd(f_num[0], i1, f_num[1]));
+  double const e1 = _mm512_cvtsd_f64(_mm512_permutex2var_pd(f_den[0], i1, f_den[1]));
+  double const n2 = _mm512_cvtsd_f64(_mm512_permutex2var_pd(f_num[0], i2, f_num[1]));
+  double const e2 = _mm512_cvtsd_f64(_mm512_permutex2var_pd(f_den[0], i2, f_den[1]));
+  double const x1 = xa * kScanFine[j - 1];
+  double const y1 = n1 / e1, y2 = n2 / e2;
+  // Linear interpolation in t: x = x1 exp(v), v = (h / 15) w, w = y1 / (y1 -
   // y2) in [0, 1]; exp(v) by its [2/2] Pade form (relative error below
   // v^5 / 720 < 5e-10), written in y1 and y1 - y2 so that lambda = x / (1 +
   // x) takes one division.
-  double const a = y1 * (kScanStep / 17.0), b = y1 - y2;
+  double const a = y1 * (kScanStep / 15.0), b = y1 - y2;
   double const b2 = 12.0 * (b * b), ab = 6.0 * (a * b), aa = a * a;
-  double const pn = (b2 + aa) + ab, pd = (b2 + aa) - ab;
-  double const xn = x1 * pn;
-  double const l = xn / (pd + xn);
+  double const en = (b2 + aa) + ab, ed = (b2 + aa) - ab;
+  double const xn = x1 * en;
+  double const l = xn / (ed + xn);
   return l > 0.0 && l < 1.0 ? l : -1.0;
 }
 
