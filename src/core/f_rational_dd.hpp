@@ -218,7 +218,7 @@ PW85_ALWAYS_INLINE bool f_eval_rational(double lambda, RationalDD const &k,
   double const B1 = (e0 * ss + e2 * tt) + 2.0 * e1 * st;
   double const B2 = 2.0 * ((e2 * t - e0 * s) + e1 * (s - t));
   double const B3 = 2.0 * ((e0 + e2) - 2.0 * e1);
-  // phi_k = d^k phi / d lambda^k = N_k / B^(k + 1), from sum_i C(k, i)
+  // Eq. (M25): phi_k = d^k phi / d lambda^k = N_k / B^(k + 1), from sum_i C(k, i)
   // phi_i B_(k-i) = A_k: the numerators are products and sums only, so
   // they are formed while the division runs (B^5 stays in range: the
   // coefficients are scaled, rational_coefficients_dd).
@@ -239,7 +239,12 @@ PW85_ALWAYS_INLINE bool f_eval_rational(double lambda, RationalDD const &k,
   double const A1a = 2.0 * (a2 * t + a0 * s) + a1 * std::fabs(s - t);
   double const B1a = (std::fabs(e0) * ss + std::fabs(e2) * tt) + 2.0 * std::fabs(e1) * st;
   e.edf = 16.0 * u * (std::fabs(p1) * phi + p * (A1a + phi * B1a) * ib);
-  return B > 0.0 && A > 0.0 && std::isfinite(e.f) && std::isfinite(e.d4f) &&
+  // B >= 2^-150 keeps B^5 phi_4 (N4 and its terms) normal: for inputs
+  // within the range of contact.hpp, phi >= |r|^2 / lambda_max(Q) > 2^-183
+  // and the scaled B <= 8, so N_k = B^(k+1) phi_k cannot underflow into a
+  // finite but wrong phi_k. A smaller B (near an end of [0, 1] where one
+  // det Q_i is below 2^-150 times the scale) declines to the general method.
+  return B >= 0x1p-150 && A > 0.0 && std::isfinite(e.f) && std::isfinite(e.d4f) &&
          std::isfinite(e.edf);
 }
 

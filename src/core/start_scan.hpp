@@ -7,13 +7,13 @@
 //  1. on a coarse grid of 32 points, t = (k - 15.5) h, h = 3/4, covering
 //     |t| <= 11.6 (|lambda - 1/2| < 0.5 - 1e-5), by the first grid point
 //     where a1 - x^2 a2 is not positive;
-//  2. on the 16 interior points (step h / 17) of that coarse interval, the
-//     same way;
+//  2. on 16 points (step h / 15) from coarse point k - 1 to coarse point k
+//     of that interval, the same way;
 //  3. by linear interpolation of y in t between the two points that bracket
-//     it (the error is second order in the step; over bench_contact's 60000
-//     pairs of classes 0-2, p99 3.1e-4 and at most 4.6e-4 in t).
-// Each grid is evaluated in AVX-512 vectors: no division, no branch per
-// point, and a dependency chain of two polynomial evaluations instead of
+//     it (the error is second order in the step; on bench_contact's pairs,
+//     p99 6.9e-5 / 3.2e-4 / 4.0e-4 in t in classes 0-2, docs/methods.md).
+// Each grid is evaluated in AVX-512 vectors, a1 - x^2 a2 and a1 + x^2 a2
+// as sextics (Estrin's scheme): no division, no branch per point, and a dependency chain of two polynomial evaluations instead of
 // one Newton step after another. A root outside the coarse grid returns -1
 // (the caller then runs (M22)). The quartics are used unscaled (the scaling
 // of (M22) protects its products of three a_i; here none is formed). Only
@@ -65,7 +65,7 @@ PW85_V4 unsigned first_nonpositive(__m512d v0, __m512d v1, __m512d v2, __m512d v
 
 }  // namespace scan
 
-// The grids: x = exp((k - 15.5) h), k = 0..31, and the factors exp((l + 1) h / 17),
+// The grids: x = exp((k - 15.5) h), k = 0..31, and the factors exp(l h / 15),
 // l = 0..15, h = 3 / 4.
 constexpr double kScanStep = 0.75;
 alignas(64) constexpr double kScanCoarse[32] = {
