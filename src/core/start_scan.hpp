@@ -13,8 +13,10 @@
 //     it (the error is second order in the step; on bench_contact's pairs,
 //     p99 6.9e-5 / 3.2e-4 / 4.0e-4 in t in classes 0-2, docs/methods.md).
 // Each grid is evaluated in AVX-512 vectors, a1 - x^2 a2 and a1 + x^2 a2
-// as sextics (Estrin's scheme): no division, no branch per point, and a dependency chain of two polynomial evaluations instead of
-// one Newton step after another. A root outside the coarse grid returns -1
+// as sextics (Estrin's scheme): no division, no branch per point, and a
+// dependency chain of two polynomial evaluations instead of one Newton
+// step after another; the two bracketing values are taken from the
+// registers by permutes. A root outside the coarse grid returns -1
 // (the caller then runs (M22)). The quartics are used unscaled (the scaling
 // of (M22) protects its products of three a_i; here none is formed). Only
 // the start depends on this; the rational step that follows certifies its
