@@ -39,14 +39,12 @@ struct RationalDD {
 #if PW85_ISA_DISPATCH
 namespace rdd {
 
-#define PW85_V4 __attribute__((target("arch=x86-64-v4"), always_inline)) inline
-
 struct DD {
   __m512d h, l;
 };
 
 // (a + b) exactly as h + e (Knuth's two_sum).
-PW85_V4 DD two_sum(__m512d a, __m512d b) {
+PW85_V4_INLINE DD two_sum(__m512d a, __m512d b) {
   __m512d const s = _mm512_add_pd(a, b);
   __m512d const bb = _mm512_sub_pd(s, a);
   __m512d const e =
@@ -55,48 +53,48 @@ PW85_V4 DD two_sum(__m512d a, __m512d b) {
 }
 
 // a b exactly as h + e.
-PW85_V4 DD two_prod(__m512d a, __m512d b) {
+PW85_V4_INLINE DD two_prod(__m512d a, __m512d b) {
   __m512d const p = _mm512_mul_pd(a, b);
   return DD{p, _mm512_fmsub_pd(a, b, p)};
 }
 
 // x + y for unnormalised pairs: the high parts by two_sum, the low parts
 // summed in double (error <= u |x.l + y.l + e| + ...: second order).
-PW85_V4 DD add(DD x, DD y) {
+PW85_V4_INLINE DD add(DD x, DD y) {
   DD const s = two_sum(x.h, y.h);
   return DD{s.h, _mm512_add_pd(s.l, _mm512_add_pd(x.l, y.l))};
 }
 
-PW85_V4 DD sub(DD x, DD y) {
+PW85_V4_INLINE DD sub(DD x, DD y) {
   DD const s = two_sum(x.h, _mm512_sub_pd(_mm512_setzero_pd(), y.h));
   return DD{s.h, _mm512_add_pd(s.l, _mm512_sub_pd(x.l, y.l))};
 }
 
 // x v, x a pair, v exact: h + l (the l of x times v rounded).
-PW85_V4 DD mul_d(DD x, __m512d v) {
+PW85_V4_INLINE DD mul_d(DD x, __m512d v) {
   DD const p = two_prod(x.h, v);
   return DD{p.h, _mm512_fmadd_pd(x.l, v, p.l)};
 }
 
 // x y for two pairs; x.l y.l (below u^2 |x y|) is left to the error bound.
-PW85_V4 DD mul_dd(DD x, DD y) {
+PW85_V4_INLINE DD mul_dd(DD x, DD y) {
   DD const p = two_prod(x.h, y.h);
   return DD{p.h, _mm512_fmadd_pd(x.h, y.l, _mm512_fmadd_pd(x.l, y.h, p.l))};
 }
 
-PW85_V4 __m512d perm(__m512d v, __m512i idx) { return _mm512_permutex2var_pd(v, idx, v); }
+PW85_V4_INLINE __m512d perm(__m512d v, __m512i idx) { return _mm512_permutex2var_pd(v, idx, v); }
 
-PW85_V4 __m512d vabs(__m512d v) { return _mm512_andnot_pd(_mm512_set1_pd(-0.0), v); }
+PW85_V4_INLINE __m512d vabs(__m512d v) { return _mm512_andnot_pd(_mm512_set1_pd(-0.0), v); }
 
 // One round of the transposed reduction: lanes of x and y combined by idx_a
 // and idx_b (two-source permutes), then added.
-PW85_V4 DD fold(DD x, DD y, __m512i ia, __m512i ib) {
+PW85_V4_INLINE DD fold(DD x, DD y, __m512i ia, __m512i ib) {
   DD const a{_mm512_permutex2var_pd(x.h, ia, y.h), _mm512_permutex2var_pd(x.l, ia, y.l)};
   DD const b{_mm512_permutex2var_pd(x.h, ib, y.h), _mm512_permutex2var_pd(x.l, ib, y.l)};
   return add(a, b);
 }
 
-PW85_V4 __m512d fold_abs(__m512d x, __m512d y, __m512i ia, __m512i ib) {
+PW85_V4_INLINE __m512d fold_abs(__m512d x, __m512d y, __m512i ia, __m512i ib) {
   return _mm512_add_pd(_mm512_permutex2var_pd(x, ia, y), _mm512_permutex2var_pd(x, ib, y));
 }
 
@@ -111,7 +109,7 @@ PW85_V4 __m512d fold_abs(__m512d x, __m512d y, __m512i ia, __m512i ib) {
 // that every d_j times the scale is below 8 (d_j <= T^3): f_eval_rational
 // forms B^5. T is positive and, for inputs within the range of contact.hpp
 // (kSafeLo, kSafeHi), 3E is well inside the exponent range.
-__attribute__((target("arch=x86-64-v4"), always_inline)) inline bool rational_coefficients_dd(
+PW85_V4_INLINE bool rational_coefficients_dd(
     Vec3 const &r, Sym3 const &q1, Sym3 const &q2, RationalDD &out) noexcept {
   using namespace rdd;
   // The scale, from the inputs (off the dependency chain of the sums).
@@ -190,7 +188,6 @@ __attribute__((target("arch=x86-64-v4"), always_inline)) inline bool rational_co
   return (ok & 0x7F) == 0x7F;
 }
 
-#undef PW85_V4
 #endif
 
 // f and its first four derivatives at lambda from the coefficients

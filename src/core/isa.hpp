@@ -22,6 +22,9 @@
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12 && \
     !defined(PW85_NO_ISA_DISPATCH)
 #define PW85_ISA_DISPATCH 1
+// An always-inline helper compiled for x86-64-v4 (AVX-512 intrinsics), to
+// be inlined into a target("arch=x86-64-v4") function.
+#define PW85_V4_INLINE __attribute__((target("arch=x86-64-v4"), always_inline)) inline
 #else
 #define PW85_ISA_DISPATCH 0
 #endif

@@ -32,13 +32,11 @@ namespace pw85 {
 
 namespace scan {
 
-#define PW85_V4 __attribute__((target("arch=x86-64-v4"), always_inline)) inline
-
-PW85_V4 __m512d bc(double v) { return _mm512_set1_pd(v); }
+PW85_V4_INLINE __m512d bc(double v) { return _mm512_set1_pd(v); }
 
 // The sextic sum_n c_n x^n at the eight lanes of x (Estrin's scheme: four
 // levels of FMA after x).
-PW85_V4 __m512d sextic(double const c[7], __m512d x) {
+PW85_V4_INLINE __m512d sextic(double const c[7], __m512d x) {
   __m512d const x2 = _mm512_mul_pd(x, x), x4 = _mm512_mul_pd(x2, x2);
   __m512d const lo = _mm512_fmadd_pd(x2, _mm512_fmadd_pd(x, bc(c[3]), bc(c[2])),
                                      _mm512_fmadd_pd(x, bc(c[1]), bc(c[0])));
@@ -46,24 +44,23 @@ PW85_V4 __m512d sextic(double const c[7], __m512d x) {
   return _mm512_fmadd_pd(x4, hi, lo);
 }
 
-PW85_V4 unsigned positive_mask(__m512d v) {
+PW85_V4_INLINE unsigned positive_mask(__m512d v) {
   return (unsigned)_mm512_cmp_pd_mask(v, _mm512_setzero_pd(), _CMP_GT_OQ);
 }
 
 // Index of the first lane (0-15, or 0-31) whose value is not positive (16,
 // or 32, when all are).
-PW85_V4 unsigned first_nonpositive16(__m512d v0, __m512d v1) {
+PW85_V4_INLINE unsigned first_nonpositive16(__m512d v0, __m512d v1) {
   unsigned const pos = positive_mask(v0) | (positive_mask(v1) << 8);
   return (unsigned)__builtin_ctz(~pos);  // ~pos has bit 16 and up set
 }
-PW85_V4 unsigned first_nonpositive(__m512d v0, __m512d v1, __m512d v2, __m512d v3) {
+PW85_V4_INLINE unsigned first_nonpositive(__m512d v0, __m512d v1, __m512d v2, __m512d v3) {
   unsigned long long const pos = (unsigned long long)(positive_mask(v0) | (positive_mask(v1) << 8) |
                                                       (positive_mask(v2) << 16) |
                                                       (positive_mask(v3) << 24));
   return (unsigned)__builtin_ctzll(~pos);  // ~pos has bit 32 and up set
 }
 
-#undef PW85_V4
 
 }  // namespace scan
 
@@ -92,7 +89,7 @@ alignas(64) constexpr double kScanFine[16] = {
 
 // Returns lambda, or -1 when the root is outside the coarse grid (or the
 // interpolated lambda is not in (0, 1)).
-__attribute__((target("arch=x86-64-v4"), always_inline)) inline double scan_start(
+PW85_V4_INLINE double scan_start(
     Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
   StartQuartics sq;
   start_quartics<false>(r, q1, q2, sq);
