@@ -34,8 +34,8 @@ PW85_ALWAYS_INLINE int entry_body(double const *r12, double const *q1, double co
   if (method >= PW85_METHOD_DEFAULT && method <= PW85_METHOD_ZHENG &&
       pw85::capi::screen_contact_pair(r12, q1, q2, pw85::kSafeLo, pw85::kSafeHi)) {
     // Common case: valid arguments of moderate magnitude, checked in one pass.
-    s = pw85::contact_method_in_range(method, pw85::load_vec3(r12), pw85::load_sym3(q1),
-                                      pw85::load_sym3(q2), m);
+    s = pw85::contact_method_in_range(method, pw85::view_vec3(r12), pw85::view_sym3(q1),
+                                      pw85::view_sym3(q2), m);
   } else {
     int const status = pw85::capi::validate_pair_ldl(r12, q1, q2);
     if (status != PW85_OK) return status;

@@ -29,6 +29,23 @@ inline Sym3 load_sym3(double const *p) noexcept {
   return Sym3{{p[0], p[1], p[2], p[3], p[4], p[5]}};
 }
 
+// The caller's arrays seen as Vec3 / Sym3, without a copy: the struct is
+// exactly its array (checked below) and every access reads a double. For
+// the C layer's hot path (src/capi/contact_method.cpp): a copy on the stack
+// is read back by the AVX-512 code of DEFAULT with wide loads that span
+// several of the copy's stores, which cannot be forwarded and wait for them
+// (docs/methods.md, "The C entry without a copy").
+static_assert(sizeof(Vec3) == kDim * sizeof(double) && alignof(Vec3) == alignof(double),
+              "Vec3 must be exactly double[3]");
+static_assert(sizeof(Sym3) == kSym * sizeof(double) && alignof(Sym3) == alignof(double),
+              "Sym3 must be exactly double[6]");
+inline Vec3 const &view_vec3(double const *p) noexcept {
+  return *reinterpret_cast<Vec3 const *>(p);
+}
+inline Sym3 const &view_sym3(double const *p) noexcept {
+  return *reinterpret_cast<Sym3 const *>(p);
+}
+
 inline double dot(Vec3 const &u, Vec3 const &v) noexcept {
   return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
 }
