@@ -19,6 +19,9 @@ static_assert(pw85::kMethodZheng == PW85_METHOD_ZHENG, "");
 
 namespace {
 
+// kV4: compiled into entry_v4 below, which calls DEFAULT's v4 variant
+// directly (no dispatcher switch, no second CPU check).
+template <bool kV4>
 PW85_ALWAYS_INLINE int entry_body(double const *r12, double const *q1, double const *q2,
                                   int method, pw85_result *res) noexcept {
   if (res == nullptr) return PW85_ERR_INVALID_ARGUMENT;
@@ -34,8 +37,14 @@ PW85_ALWAYS_INLINE int entry_body(double const *r12, double const *q1, double co
   if (method >= PW85_METHOD_DEFAULT && method <= PW85_METHOD_ZHENG &&
       pw85::capi::screen_contact_pair(r12, q1, q2, pw85::kSafeLo, pw85::kSafeHi)) {
     // Common case: valid arguments of moderate magnitude, checked in one pass.
-    s = pw85::contact_method_in_range(method, pw85::view_vec3(r12), pw85::view_sym3(q1),
-                                      pw85::view_sym3(q2), m);
+#if PW85_ISA_DISPATCH
+    if (kV4 && method == PW85_METHOD_DEFAULT)
+      s = pw85::contact_default_v4(pw85::view_vec3(r12), pw85::view_sym3(q1),
+                                   pw85::view_sym3(q2), m);
+    else
+#endif
+      s = pw85::contact_method_in_range(method, pw85::view_vec3(r12), pw85::view_sym3(q1),
+                                        pw85::view_sym3(q2), m);
   } else {
     int const status = pw85::capi::validate_pair_ldl(r12, q1, q2);
     if (status != PW85_OK) return status;
@@ -59,7 +68,7 @@ PW85_ALWAYS_INLINE int entry_body(double const *r12, double const *q1, double co
 __attribute__((target("arch=x86-64-v4"))) int entry_v4(double const *r12, double const *q1,
                                                         double const *q2, int method,
                                                         pw85_result *res) noexcept {
-  return entry_body(r12, q1, q2, method, res);
+  return entry_body<true>(r12, q1, q2, method, res);
 }
 #endif
 
@@ -72,5 +81,5 @@ extern "C" int pw85_contact_function_method(double const r12[PW85_DIM],
 #if PW85_ISA_DISPATCH
   if (__builtin_cpu_supports("x86-64-v4")) return entry_v4(r12, q1, q2, method, res);
 #endif
-  return entry_body(r12, q1, q2, method, res);
+  return entry_body<false>(r12, q1, q2, method, res);
 }

@@ -4,6 +4,7 @@
 // definite.
 #pragma once
 
+#include "isa.hpp"
 #include "status.hpp"
 #include "sym3.hpp"
 
@@ -66,6 +67,13 @@ Status contact_method_in_range(int method, Vec3 const &r, Sym3 const &q1, Sym3 c
 // moderate magnitudes (see contact_method).
 Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                        MethodResult &res) noexcept;      // default.cpp
+#if PW85_ISA_DISPATCH
+// contact_default's x86-64-v4 variant (default.cpp), for callers that have
+// checked the CPU (the C layer's v4 entry, src/capi/contact_method.cpp);
+// also sets res.method.
+Status contact_default_v4(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                          MethodResult &res) noexcept;
+#endif
 Status contact_newton(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                       MethodResult &res) noexcept;       // newton.cpp
 Status contact_rational(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,

@@ -387,25 +387,37 @@ PW85_ALWAYS_INLINE bool roundish(Sym3 const &q) noexcept {
   return t * t * t <= kRoundTr * det;
 }
 
-__attribute__((target("arch=x86-64-v4"))) Status default_v4(Vec3 const &r, Sym3 const &q1,
-                                                             Sym3 const &q2,
-                                                             MethodResult &res) noexcept {
-#ifndef PW85_NO_ROUND
-  bool round = roundish(q1) & roundish(q2);
-  opaque(round);
-  if (round) return default_body(r, q1, q2, res);
-#endif
-  if (rational_v4(r, q1, q2, res)) return kOk;
+// The general method compiled for x86-64-v4, out of line: inlined into
+// contact_default_v4 below, its register use made every call save and
+// restore every callee-saved register, the rational step's calls included.
+__attribute__((target("arch=x86-64-v4"), noinline)) Status default_body_v4(
+    Vec3 const &r, Sym3 const &q1, Sym3 const &q2, MethodResult &res) noexcept {
   return default_body(r, q1, q2, res);
 }
 #endif
 
 }  // namespace
 
+#if PW85_ISA_DISPATCH
+__attribute__((target("arch=x86-64-v4"))) Status contact_default_v4(Vec3 const &r,
+                                                                     Sym3 const &q1,
+                                                                     Sym3 const &q2,
+                                                                     MethodResult &res) noexcept {
+  res.method = kMethodDefault;
+#ifndef PW85_NO_ROUND
+  bool round = roundish(q1) & roundish(q2);
+  opaque(round);
+  if (round) return default_body_v4(r, q1, q2, res);
+#endif
+  if (rational_v4(r, q1, q2, res)) return kOk;
+  return default_body_v4(r, q1, q2, res);
+}
+#endif
+
 Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                        MethodResult &res) noexcept {
 #if PW85_ISA_DISPATCH
-  if (__builtin_cpu_supports("x86-64-v4")) return default_v4(r, q1, q2, res);
+  if (__builtin_cpu_supports("x86-64-v4")) return contact_default_v4(r, q1, q2, res);
 #endif
   return default_body(r, q1, q2, res);
 }
