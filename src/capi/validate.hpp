@@ -65,9 +65,10 @@ inline bool screen_contact_pair(double const *r, double const *q1, double const 
   D2 const mb = v2::max(v2::max(v2::abs(b01), v2::abs(b23)), v2::abs(b45));
   double const m1 = ma[0] > ma[1] ? ma[0] : ma[1], m2 = mb[0] > mb[1] ? mb[0] : mb[1];
   double const r0 = std::fabs(r[0]), r1 = std::fabs(r[1]), r2 = std::fabs(r[2]);
-  double const rm = r0 > r1 ? (r0 > r2 ? r0 : r2) : (r1 > r2 ? r1 : r2);  // max |r_i|
-  bool const in = (r0 < hi) & (r1 < hi) & (r2 < hi) & (rm > lo) & (m1 > lo) & (m1 < hi) &
-                  (m2 > lo) & (m2 < hi);
+  // max |r_i| > lo as "some |r_i| > lo": the maximum written as nested
+  // conditionals was compiled to a branch on r0 > r1, taken at random.
+  bool const in = (r0 < hi) & (r1 < hi) & (r2 < hi) & ((r0 > lo) | (r1 > lo) | (r2 > lo)) &
+                  (m1 > lo) & (m1 < hi) & (m2 > lo) & (m2 < hi);
   return in & ldl_pivots_positive(a01, a23, a45, b01, b23, b45);
 }
 
