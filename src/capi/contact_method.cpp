@@ -1,8 +1,10 @@
 // extern "C" entry point of the method-selecting contact function (issue 7):
 // validate, call pw85::contact_method (src/core/methods.cpp), copy out. Valid
 // arguments of moderate magnitude (nearly all calls) are recognised by one
-// screening pass and go to contact_method_in_range directly, skipping the
-// separate finiteness loops and the dispatcher's range test.
+// screening pass and go to contact_method_in_range directly (DEFAULT on
+// x86-64-v4: to contact_default_v4), skipping the separate finiteness loops
+// and the dispatcher's range test, with the caller's arrays passed as views
+// (no copy; docs/methods.md, "The C entry (thirteenth session)").
 #include <cmath>
 
 #include "pw85.h"

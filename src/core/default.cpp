@@ -365,8 +365,8 @@ PW85_ALWAYS_INLINE bool rational_iterate(RationalDD const &k, double lambda0,
 // src/meson.build). The coefficients come first in program order: their
 // independent vector work then overlaps with the start's dependency chain
 // (measured: 9-14 ns per call less than the other order).
-// (A separate function: inlined into default_v4 together with default_body
-// it measured 8 ns per call slower.)
+// (A separate function: inlined into the v4 variant together with
+// default_body it measured 8 ns per call slower.)
 __attribute__((target("arch=x86-64-v4"), noinline)) bool rational_v4(
     Vec3 const &r, Sym3 const &q1, Sym3 const &q2, MethodResult &res) noexcept {
   RationalDD k;
@@ -408,6 +408,8 @@ __attribute__((target("arch=x86-64-v4"), noinline)) Status default_body_v4(
 }  // namespace
 
 #if PW85_ISA_DISPATCH
+// DEFAULT on x86-64-v4 (contact.hpp): the round test, the rational step,
+// and the general method when either sends the pair there.
 __attribute__((target("arch=x86-64-v4"))) Status contact_default_v4(Vec3 const &r,
                                                                      Sym3 const &q1,
                                                                      Sym3 const &q2,
