@@ -1,5 +1,5 @@
 // PW85_METHOD_DEFAULT (docs/methods.md, section "DEFAULT"). On x86-64-v4,
-// unless both matrices are nearly round, first the rational step
+// first the rational step
 // (rational_iterate below: f from its seven coefficients in double-double,
 // f_rational_dd.hpp), from the grid start (M24) (start_scan.hpp); when it
 // declines, and on other CPUs:
@@ -35,7 +35,6 @@
 #include "f_rational_dd.hpp"
 #include "isa.hpp"
 #include "newton.hpp"
-#include "screen.hpp"
 #include "start_scan.hpp"
 
 namespace pw85 {
@@ -376,26 +375,6 @@ __attribute__((target("arch=x86-64-v4"), noinline)) bool rational_v4(
   return coef_ok && rational_iterate(k, lambda0, res);
 }
 
-// tr(Q)^3 <= kRoundTr det(Q): eigenvalue ratios below about 16 (27 for a
-// sphere, 364.5 for eigenvalues 1, 1, 16). For two such matrices the double
-// adjugate exit of step 1 is taken by 98 % of the pairs and is faster than
-// the rational step (docs/methods.md, "DEFAULT on x86-64-v4").
-// Both matrices at once, one in each lane of a two-lane vector (screen.hpp).
-constexpr double kRoundTr = 400.0;
-PW85_ALWAYS_INLINE bool both_roundish(Sym3 const &q1, Sym3 const &q2) noexcept {
-  using v2::D2;
-  D2 const a01 = v2::load(q1.a), a23 = v2::load(q1.a + 2), a45 = v2::load(q1.a + 4);
-  D2 const b01 = v2::load(q2.a), b23 = v2::load(q2.a + 2), b45 = v2::load(q2.a + 4);
-  D2 const x0 = v2::lo_lanes(a01, b01), x1 = v2::hi_lanes(a01, b01);
-  D2 const x2 = v2::lo_lanes(a23, b23), x3 = v2::hi_lanes(a23, b23);
-  D2 const x4 = v2::lo_lanes(a45, b45), x5 = v2::hi_lanes(a45, b45);
-  D2 const t = (x0 + x3) + x5;
-  D2 const det = x0 * (x3 * x5 - x4 * x4) - x1 * (x1 * x5 - x4 * x2) + x2 * (x1 * x4 - x3 * x2);
-  D2 const k{kRoundTr, kRoundTr};
-  v2::I2 const round = t * t * t <= k * det;
-  return (round[0] & round[1]) != 0;
-}
-
 // The general method compiled for x86-64-v4, out of line: inlined into
 // contact_default_v4 below, its register use made every call save and
 // restore every callee-saved register, the rational step's calls included.
@@ -408,18 +387,15 @@ __attribute__((target("arch=x86-64-v4"), noinline)) Status default_body_v4(
 }  // namespace
 
 #if PW85_ISA_DISPATCH
-// DEFAULT on x86-64-v4 (contact.hpp): the round test, the rational step,
-// and the general method when either sends the pair there.
+// DEFAULT on x86-64-v4 (contact.hpp): the rational step, and the general
+// method when it declines. (Until the fourteenth session nearly round pairs
+// went to the general method first; docs/methods.md, "The round test
+// removed".)
 __attribute__((target("arch=x86-64-v4"))) Status contact_default_v4(Vec3 const &r,
                                                                      Sym3 const &q1,
                                                                      Sym3 const &q2,
                                                                      MethodResult &res) noexcept {
   res.method = kMethodDefault;
-#ifndef PW85_NO_ROUND
-  bool round = both_roundish(q1, q2);
-  opaque(round);
-  if (round) return default_body_v4(r, q1, q2, res);
-#endif
   if (rational_v4(r, q1, q2, res)) return kOk;
   return default_body_v4(r, q1, q2, res);
 }
