@@ -358,16 +358,15 @@ PW85_ALWAYS_INLINE bool rational_iterate(RationalDD const &k, double lambda0,
   return false;
 }
 
-// x86-64-v4 variant, chosen at run time: the rational step above, then,
-// when it declines, the general method from its own start (M22) (compiled for
-// v4 with the same IEEE operations as the baseline: -ffp-contract=off,
-// src/meson.build). The coefficients come first in program order: their
-// independent vector work then overlaps with the start's dependency chain
-// (measured: 9-14 ns per call less than the other order).
-// Inlined into contact_default_v4, which calls the general method out of
-// line (default_body_v4): 0.3-2 ns per call faster than a separate function
-// (once inlined together with default_body it measured 8 ns slower).
-__attribute__((target("arch=x86-64-v4"), always_inline)) inline bool rational_v4(
+// The rational step with its inputs: the seven coefficients, the start
+// (M24) ((M22) where (M24) finds no bracket), then rational_iterate. The
+// coefficients come first in program order: their independent vector work
+// then overlaps with the start's dependency chain (measured: 9-14 ns per
+// call less than the other order). Inlined into contact_default_v4, which
+// calls the general method out of line (default_body_v4): 0.3-2 ns per call
+// faster than a separate function (once inlined together with default_body
+// it measured 8 ns slower).
+PW85_V4_INLINE bool rational_v4(
     Vec3 const &r, Sym3 const &q1, Sym3 const &q2, MethodResult &res) noexcept {
   RationalDD k;
   bool const coef_ok = rational_coefficients_dd(r, q1, q2, k);
@@ -376,7 +375,9 @@ __attribute__((target("arch=x86-64-v4"), always_inline)) inline bool rational_v4
   return coef_ok && rational_iterate(k, lambda0, res);
 }
 
-// The general method compiled for x86-64-v4, out of line: inlined into
+// The general method compiled for x86-64-v4, from its own start (M22), with
+// the same IEEE operations as the baseline (-ffp-contract=off,
+// src/meson.build). Out of line: inlined into
 // contact_default_v4 below, its register use made every call save and
 // restore every callee-saved register, the rational step's calls included.
 __attribute__((target("arch=x86-64-v4"), noinline)) Status default_body_v4(
