@@ -18,7 +18,7 @@
 
 #include <glib.h>
 
-#include "f_rational_dd.hpp"
+#include "eval/f_rational_dd.hpp"
 #include "../src/tools/bench_common.hpp"
 
 namespace {

@@ -8,9 +8,9 @@
 #include <cmath>
 
 #include "pw85.h"
-#include "../core/contact.hpp"
-#include "../core/isa.hpp"
-#include "../core/sym3.hpp"
+#include "contact/contact.hpp"
+#include "common/isa.hpp"
+#include "common/sym3.hpp"
 #include "validate.hpp"
 
 static_assert(pw85::kMethodDefault == PW85_METHOD_DEFAULT, "method ids must match pw85.h");

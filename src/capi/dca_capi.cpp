@@ -4,11 +4,11 @@
 #include <cmath>
 
 #include "pw85.h"
-#include "../core/contact.hpp"
-#include "../core/dca.hpp"
-#include "../core/status.hpp"
-#include "../core/sym2.hpp"
-#include "../core/sym3.hpp"
+#include "contact/contact.hpp"
+#include "dca/dca.hpp"
+#include "common/status.hpp"
+#include "common/sym2.hpp"
+#include "common/sym3.hpp"
 #include "validate.hpp"
 
 static_assert(pw85::kDcaMaxEval == PW85_DCA_MAX_EVAL, "must match pw85.h");

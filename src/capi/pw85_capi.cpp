@@ -4,11 +4,11 @@
 #include <cmath>
 
 #include "pw85.h"
-#include "../core/contact.hpp"
-#include "../core/ellipsoid.hpp"
-#include "../core/f_cholesky.hpp"
-#include "../core/status.hpp"
-#include "../core/sym3.hpp"
+#include "contact/contact.hpp"
+#include "common/ellipsoid.hpp"
+#include "eval/f_cholesky.hpp"
+#include "common/status.hpp"
+#include "common/sym3.hpp"
 #include "validate.hpp"
 
 static_assert(pw85::kOk == PW85_OK, "status codes must match pw85.h");

@@ -12,10 +12,10 @@
 #endif
 
 #include "pw85.h"
-#include "../core/contact.hpp"
-#include "../core/contact_geometry.hpp"
-#include "../core/overlap.hpp"
-#include "../core/sym3.hpp"
+#include "contact/contact.hpp"
+#include "geometry/contact_geometry.hpp"
+#include "overlap/overlap.hpp"
+#include "common/sym3.hpp"
 #include "validate.hpp"
 
 using pw85::capi::fill_nan;

@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "../core/status.hpp"
-#include "../core/screen.hpp"
-#include "../core/sym3.hpp"
+#include "common/status.hpp"
+#include "common/screen.hpp"
+#include "common/sym3.hpp"
 
 namespace pw85 {
 namespace capi {

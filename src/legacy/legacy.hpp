@@ -11,9 +11,9 @@
 // finite input, q1 and q2 positive definite.
 #pragma once
 
-#include "../core/contact.hpp"
-#include "../core/status.hpp"
-#include "../core/sym3.hpp"
+#include "contact/contact.hpp"
+#include "common/status.hpp"
+#include "common/sym3.hpp"
 
 namespace pw85 {
 namespace legacy {

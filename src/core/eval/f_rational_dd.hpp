@@ -1,0 +1,248 @@
+// The seven positive coefficients of f (docs/methods.md, eqs. (M12)-(M13))
+// computed in double-double with AVX-512, then f and its derivatives from
+// them in double (DEFAULT's fast path on x86-64-v4, default.cpp).
+//
+// With s = 1 - lambda, t = lambda (Bernstein form, eq. (M13)):
+//   f = s t A / B,  A = a0 s^2 + a1 s t + a2 t^2,
+//   B = d0 s^3 + d1 s^2 t + d2 s t^2 + d3 t^3,
+//   a0 = r^T adj(Q1) r, a1 = r^T M r, a2 = r^T adj(Q2) r,
+//   d0 = det Q1, d1 = tr(adj(Q1) Q2), d2 = tr(Q1 adj(Q2)), d3 = det Q2,
+// M the mixed adjugate. All seven are positive for positive definite Q1, Q2,
+// so A and B are sums of positive terms at every lambda in [0, 1]: with the
+// coefficients correct to a few u, f is correct to a few u whatever the
+// conditioning of Q(lambda), and so is its maximum. The whole conditioning
+// of the problem sits in the coefficients; they are polynomials in the
+// inputs, computed here from exact products (two_prod by FMA) and
+// compensated sums (two_sum), with an error below 32 u^2 times the sum of
+// the absolute values of their terms, which is computed alongside.
+#pragma once
+
+#include <cmath>
+
+#include "eval/f_derivatives.hpp"
+#include "common/isa.hpp"
+#include "common/sym3.hpp"
+
+#if PW85_ISA_DISPATCH
+#include <immintrin.h>
+#endif
+
+namespace pw85 {
+
+// Coefficients, in this order: a0, a1, a2, d0, d1, d2, d3, each times
+// scale, a power of two (f = s t A / B does not depend on it).
+struct RationalDD {
+  double c[8];
+  double scale;
+};
+
+#if PW85_ISA_DISPATCH
+namespace rdd {
+
+struct DD {
+  __m512d h, l;
+};
+
+// (a + b) exactly as h + e (Knuth's two_sum).
+PW85_V4_INLINE DD two_sum(__m512d a, __m512d b) {
+  __m512d const s = _mm512_add_pd(a, b);
+  __m512d const bb = _mm512_sub_pd(s, a);
+  __m512d const e =
+      _mm512_add_pd(_mm512_sub_pd(a, _mm512_sub_pd(s, bb)), _mm512_sub_pd(b, bb));
+  return DD{s, e};
+}
+
+// a b exactly as h + e.
+PW85_V4_INLINE DD two_prod(__m512d a, __m512d b) {
+  __m512d const p = _mm512_mul_pd(a, b);
+  return DD{p, _mm512_fmsub_pd(a, b, p)};
+}
+
+// x + y for unnormalised pairs: the high parts by two_sum, the low parts
+// summed in double (error <= u |x.l + y.l + e| + ...: second order).
+PW85_V4_INLINE DD add(DD x, DD y) {
+  DD const s = two_sum(x.h, y.h);
+  return DD{s.h, _mm512_add_pd(s.l, _mm512_add_pd(x.l, y.l))};
+}
+
+PW85_V4_INLINE DD sub(DD x, DD y) {
+  DD const s = two_sum(x.h, _mm512_sub_pd(_mm512_setzero_pd(), y.h));
+  return DD{s.h, _mm512_add_pd(s.l, _mm512_sub_pd(x.l, y.l))};
+}
+
+// x v, x a pair, v exact: h + l (the l of x times v rounded).
+PW85_V4_INLINE DD mul_d(DD x, __m512d v) {
+  DD const p = two_prod(x.h, v);
+  return DD{p.h, _mm512_fmadd_pd(x.l, v, p.l)};
+}
+
+// x y for two pairs; x.l y.l (below u^2 |x y|) is left to the error bound.
+PW85_V4_INLINE DD mul_dd(DD x, DD y) {
+  DD const p = two_prod(x.h, y.h);
+  return DD{p.h, _mm512_fmadd_pd(x.h, y.l, _mm512_fmadd_pd(x.l, y.h, p.l))};
+}
+
+PW85_V4_INLINE __m512d perm(__m512d v, __m512i idx) { return _mm512_permutex2var_pd(v, idx, v); }
+
+PW85_V4_INLINE __m512d vabs(__m512d v) { return _mm512_andnot_pd(_mm512_set1_pd(-0.0), v); }
+
+// One round of the transposed reduction: lanes of x and y combined by idx_a
+// and idx_b (two-source permutes), then added.
+PW85_V4_INLINE DD fold(DD x, DD y, __m512i ia, __m512i ib) {
+  DD const a{_mm512_permutex2var_pd(x.h, ia, y.h), _mm512_permutex2var_pd(x.l, ia, y.l)};
+  DD const b{_mm512_permutex2var_pd(x.h, ib, y.h), _mm512_permutex2var_pd(x.l, ib, y.l)};
+  return add(a, b);
+}
+
+PW85_V4_INLINE __m512d fold_abs(__m512d x, __m512d y, __m512i ia, __m512i ib) {
+  return _mm512_add_pd(_mm512_permutex2var_pd(x, ia, y), _mm512_permutex2var_pd(x, ib, y));
+}
+
+}  // namespace rdd
+
+// Computes the seven coefficients, times out.scale, into out.c[0..6]
+// (out.c[7] = 0). Returns false when one is not positive or its bound
+// 32 u^2 (sum of |terms|) exceeds 2^-56 times it; otherwise each is within
+// 2.2 u of its exact value times out.scale (the double-double error, then
+// the rounding to double; d0 and d3, formed as tr(adj(Q) Q) / 3, one more
+// rounding). out.scale = 2^(-3E), T = tr Q1 + tr Q2 in [2^E, 2^(E+1)), so
+// that every d_j times the scale is below 8 (d_j <= T^3): f_eval_rational
+// forms B^5. T is positive and, for inputs within the range of contact.hpp
+// (kSafeLo, kSafeHi), 3E is well inside the exponent range.
+PW85_V4_INLINE bool rational_coefficients_dd(
+    Vec3 const &r, Sym3 const &q1, Sym3 const &q2, RationalDD &out) noexcept {
+  using namespace rdd;
+  // The scale, from the inputs (off the dependency chain of the sums).
+  double const tr = ((q1[0] + q1[3]) + q1[5]) + ((q2[0] + q2[3]) + q2[5]);
+  long long bits;
+  __builtin_memcpy(&bits, &tr, sizeof bits);
+  long long const e = ((bits >> 52) & 0x7FF) - 1023;
+  long long const sbits = (1023 - 3 * e) << 52;
+  double scale;
+  __builtin_memcpy(&scale, &sbits, sizeof scale);
+  __m512d const a = _mm512_maskz_loadu_pd(0x3F, q1.a);
+  __m512d const b = _mm512_maskz_loadu_pd(0x3F, q2.a);
+  __m512d const rv = _mm512_maskz_loadu_pd(0x07, r.x);
+  // Adjugate entries k (storage order 00 01 02 11 12 22) as P_k Q_k - S_k T_k
+  // (lanes 6, 7 index entry 0 of the zero-padded input: they are zeroed
+  // below by the weights).
+  __m512i const ip = _mm512_setr_epi64(3, 2, 1, 0, 1, 0, 6, 6);
+  __m512i const iq = _mm512_setr_epi64(5, 4, 4, 5, 2, 3, 6, 6);
+  __m512i const is = _mm512_setr_epi64(4, 1, 2, 2, 0, 1, 6, 6);
+  __m512i const it = _mm512_setr_epi64(4, 5, 3, 2, 4, 1, 6, 6);
+  __m512d const pa = perm(a, ip), qa = perm(a, iq), sa = perm(a, is), ta = perm(a, it);
+  __m512d const pb = perm(b, ip), qb = perm(b, iq), sb = perm(b, is), tb = perm(b, it);
+  DD const paqa = two_prod(pa, qa), sata = two_prod(sa, ta);
+  DD const pbqb = two_prod(pb, qb), sbtb = two_prod(sb, tb);
+  DD const paqb = two_prod(pa, qb), pbqa = two_prod(pb, qa);
+  DD const satb = two_prod(sa, tb), sbta = two_prod(sb, ta);
+  DD const c1 = sub(paqa, sata), c2 = sub(pbqb, sbtb);
+  // Mixed adjugate: the polarisation of P Q - S T.
+  DD const cm = sub(add(paqb, pbqa), add(satb, sbta));
+  // Weights of the symmetric contraction sum_ij C_ij X_ij: 1 on the
+  // diagonal, 2 off it, 0 in the padding lanes.
+  __m512d const w = _mm512_setr_pd(1.0, 2.0, 2.0, 1.0, 2.0, 1.0, 0.0, 0.0);
+  __m512d const aw = _mm512_mul_pd(a, w), bw = _mm512_mul_pd(b, w);
+  // w_k r_i r_j, exactly as a pair.
+  __m512d const ri = _mm512_mul_pd(perm(rv, _mm512_setr_epi64(0, 0, 0, 1, 1, 2, 3, 3)), w);
+  __m512d const rj = perm(rv, _mm512_setr_epi64(0, 1, 2, 1, 2, 2, 3, 3));
+  DD const rr = two_prod(ri, rj);
+  // The seven contractions, lane-wise products before the sums over k.
+  DD v[8] = {mul_dd(c1, rr),  mul_dd(cm, rr),  mul_dd(c2, rr),  mul_d(c1, aw),
+             mul_d(c1, bw),   mul_d(c2, aw),   mul_d(c2, bw),
+             DD{_mm512_setzero_pd(), _mm512_setzero_pd()}};
+  // Transposed reduction: three rounds turn the eight vectors into one
+  // whose lane j is the sum of the lanes of v[j].
+  __m512i const i1a = _mm512_setr_epi64(0, 8, 2, 10, 4, 12, 6, 14);
+  __m512i const i1b = _mm512_setr_epi64(1, 9, 3, 11, 5, 13, 7, 15);
+  __m512i const i2a = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13);
+  __m512i const i2b = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
+  __m512i const i3a = _mm512_setr_epi64(0, 1, 2, 3, 8, 9, 10, 11);
+  __m512i const i3b = _mm512_setr_epi64(4, 5, 6, 7, 12, 13, 14, 15);
+  DD const w01 = fold(v[0], v[1], i1a, i1b), w23 = fold(v[2], v[3], i1a, i1b);
+  DD const w45 = fold(v[4], v[5], i1a, i1b), w67 = fold(v[6], v[7], i1a, i1b);
+  DD const z0 = fold(w01, w23, i2a, i2b), z1 = fold(w45, w67, i2a, i2b);
+  DD const t = fold(z0, z1, i3a, i3b);
+  // Lanes: a0, a1, a2, 3 d0, d1, d2, 3 d3, 0.
+  __m512d const sum = _mm512_add_pd(t.h, t.l);
+  __m512d const third = _mm512_setr_pd(1.0, 1.0, 1.0, 1.0 / 3.0, 1.0, 1.0, 1.0 / 3.0, 0.0);
+  __m512d const coef = _mm512_mul_pd(sum, _mm512_mul_pd(third, _mm512_set1_pd(scale)));
+  __m512d const ac1 = _mm512_add_pd(vabs(paqa.h), vabs(sata.h));
+  __m512d const ac2 = _mm512_add_pd(vabs(pbqb.h), vabs(sbtb.h));
+  __m512d const acm = _mm512_add_pd(_mm512_add_pd(vabs(paqb.h), vabs(pbqa.h)),
+                                    _mm512_add_pd(vabs(satb.h), vabs(sbta.h)));
+  __m512d const arr = vabs(rr.h), va = vabs(aw), vb = vabs(bw);
+  __m512d m[8] = {_mm512_mul_pd(ac1, arr), _mm512_mul_pd(acm, arr), _mm512_mul_pd(ac2, arr),
+                  _mm512_mul_pd(ac1, va),  _mm512_mul_pd(ac1, vb),  _mm512_mul_pd(ac2, va),
+                  _mm512_mul_pd(ac2, vb),  _mm512_setzero_pd()};
+  __m512d const m01 = fold_abs(m[0], m[1], i1a, i1b), m23 = fold_abs(m[2], m[3], i1a, i1b);
+  __m512d const m45 = fold_abs(m[4], m[5], i1a, i1b), m67 = fold_abs(m[6], m[7], i1a, i1b);
+  __m512d const mt =
+      fold_abs(fold_abs(m01, m23, i2a, i2b), fold_abs(m45, m67, i2a, i2b), i3a, i3b);
+  // 32 u^2 (sum of |terms|) <= 2^-56 (the sum), and the sum > 0.
+  __m512d const bound = _mm512_mul_pd(mt, _mm512_set1_pd(32.0 * 0x1p-106 * 0x1p56));
+  __mmask8 const ok = _mm512_cmp_pd_mask(bound, sum, _CMP_LE_OQ) &
+                      _mm512_cmp_pd_mask(sum, _mm512_setzero_pd(), _CMP_GT_OQ);
+  _mm512_storeu_pd(out.c, coef);
+  out.scale = scale;
+  return (ok & 0x7F) == 0x7F;
+}
+
+#endif
+
+// f and its first four derivatives at lambda from the coefficients
+// (Bernstein form above; phi = A / B, f = s t phi, eq. (M12)), and a bound
+// edf on the error of the computed f' (first order in u). f itself is
+// within kRationalRel f of the exact value (positive terms only).
+struct RatEval {
+  double lambda, phi, dphi;
+  double f, df, d2f, d3f, d4f, edf;
+};
+
+PW85_ALWAYS_INLINE bool f_eval_rational(double lambda, RationalDD const &k,
+                                        RatEval &e) noexcept {
+  constexpr double u = 0x1p-53;
+  double const a0 = k.c[0], a1 = k.c[1], a2 = k.c[2];
+  double const d0 = k.c[3], d1 = k.c[4], d2 = k.c[5], d3 = k.c[6];
+  double const s = 1.0 - lambda, t = lambda;
+  double const ss = s * s, st = s * t, tt = t * t;
+  double const A = (a0 * ss + a2 * tt) + a1 * st;
+  double const B = (d0 * ss) * s + (d1 * ss) * t + ((d2 * tt) * s + (d3 * tt) * t);
+  // Derivatives with respect to lambda (ds = -dt = -dlambda).
+  double const A1 = 2.0 * (a2 * t - a0 * s) + a1 * (s - t);
+  double const A2 = 2.0 * ((a0 + a2) - a1);
+  double const e0 = d1 - 3.0 * d0, e1 = d2 - d1, e2 = 3.0 * d3 - d2;
+  double const B1 = (e0 * ss + e2 * tt) + 2.0 * e1 * st;
+  double const B2 = 2.0 * ((e2 * t - e0 * s) + e1 * (s - t));
+  double const B3 = 2.0 * ((e0 + e2) - 2.0 * e1);
+  // Eq. (M25): phi_k = d^k phi / d lambda^k = N_k / B^(k + 1), from sum_i C(k, i)
+  // phi_i B_(k-i) = A_k: the numerators are products and sums only, so
+  // they are formed while the division runs (B^5 stays in range: the
+  // coefficients are scaled, rational_coefficients_dd).
+  double const ib = 1.0 / B;
+  double const ib2 = ib * ib, ib3 = ib2 * ib, ib4 = ib2 * ib2, ib5 = ib4 * ib;
+  double const N1 = A1 * B - A * B1;
+  double const N2 = (A2 * B - A * B2) * B - N1 * (2.0 * B1);
+  double const N3 = -(N2 * (3.0 * B1) + (N1 * (3.0 * B2) + (A * B) * B3) * B);
+  double const N4 = -(N3 * (4.0 * B1) + (N2 * (6.0 * B2) + (N1 * (4.0 * B3)) * B) * B);
+  double const phi = A * ib;
+  double const phi1 = N1 * ib2, phi2 = N2 * ib3, phi3 = N3 * ib4, phi4 = N4 * ib5;
+  e.lambda = lambda;
+  set_f_from_phi(lambda, phi, phi1, phi2, phi3, e);  // f = p phi, eq. (M12)
+  double const p = lambda * (1.0 - lambda), p1 = 1.0 - 2.0 * lambda;
+  e.d4f = -12.0 * phi2 + 4.0 * p1 * phi3 + p * phi4;
+  // Error of f' = p1 phi + p (A1 - phi B1) / B: the terms of A1 and B1 in
+  // absolute value, with their few roundings, and the error of phi.
+  double const A1a = 2.0 * (a2 * t + a0 * s) + a1 * std::fabs(s - t);
+  double const B1a = (std::fabs(e0) * ss + std::fabs(e2) * tt) + 2.0 * std::fabs(e1) * st;
+  e.edf = 16.0 * u * (std::fabs(p1) * phi + p * (A1a + phi * B1a) * ib);
+  // B >= 2^-150 keeps B^5 phi_4 (N4 and its terms) normal: for inputs
+  // within the range of contact.hpp, phi >= |r|^2 / lambda_max(Q) > 2^-183
+  // and the scaled B <= 8, so N_k = B^(k+1) phi_k cannot underflow into a
+  // finite but wrong phi_k. A smaller B (near an end of [0, 1] where one
+  // det Q_i is below 2^-150 times the scale) declines to the general method.
+  return B >= 0x1p-150 && A > 0.0 && std::isfinite(e.f) && std::isfinite(e.d4f) &&
+         std::isfinite(e.edf);
+}
+
+}  // namespace pw85

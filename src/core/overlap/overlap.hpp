@@ -1,0 +1,55 @@
+// Exact overlap predicate of two ellipsoids (docs/overlap.md).
+//
+// overlap() decides whether the interiors of the ellipsoids
+//     E1 = {x : x^T Q1^{-1} x <= 1},  E2 = {x : (x - r)^T Q2^{-1} (x - r) <= 1}
+// intersect, i.e. whether mu^2 < 1 (pw85 documentation, chapter 3, eq. (6)),
+// exactly for the doubles given: floating-point filters whose verdicts carry
+// rigorous error bounds, then, for the pairs they cannot decide, a Sturm
+// sequence of the quartic
+//     p(lambda) = det Q(lambda) - lambda (1 - lambda) r^T adj Q(lambda) r
+// in exact integer arithmetic (overlap_exact.cpp).
+//
+// Preconditions, checked by the C layer: r, q1, q2 finite; q1, q2 positive
+// definite in floating point (the exact stage re-checks positive
+// definiteness exactly and returns kNotSpd if it fails).
+#pragma once
+
+#include "common/status.hpp"
+#include "common/sym3.hpp"
+
+namespace pw85 {
+
+// Stage that decided a verdict (for benchmarks and tests of the filters).
+enum OverlapStage : int {
+  kStageTrivial = 0,   // r = 0
+  kStageSpheres = 1,   // separating plane normal to r (O11)
+  kStageFilter = 2,    // other double-precision certificates (quartic p, Newton)
+  kStageExact = 3,     // Sturm sequence in exact integer arithmetic
+};
+
+// verdict = 1 (interiors intersect, mu^2 < 1) or 0 (mu^2 >= 1). Returns kOk,
+// kNotSpd (exact check) or kInaccurate (the exact stage ran out of its fixed
+// capacity: exponent spread of the inputs larger than documented); on error
+// verdict is left unchanged. stage (may be null) receives the deciding stage.
+Status overlap(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &verdict,
+               int *stage = nullptr) noexcept;
+
+// Safe range of the floating-point filters (docs/overlap.md, eq. (O9)):
+// inputs with max |Q_ij| in [kOverlapRangeLo, kOverlapRangeHi] and
+// |r_i| <= kOverlapRangeHi need no scaling.
+constexpr double kOverlapRangeLo = 0x1p-60;
+constexpr double kOverlapRangeHi = 0x1p60;
+
+// The hot path of pw85_overlap: screens the arguments in one pass
+// (screen.hpp: finite, L D L^T pivots of Q1 and Q2 positive, magnitudes in
+// the safe range above) and returns false, with nothing written, when they
+// fail it (the caller then validates them and calls overlap()). Otherwise
+// sets status and verdict exactly as overlap() would and returns true.
+bool overlap_screened(double const *r, double const *q1, double const *q2, int &verdict,
+                      Status &status) noexcept;
+
+// The exact stage alone (no filter): same contract as overlap().
+Status overlap_exact(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                     int &verdict) noexcept;
+
+}  // namespace pw85
