@@ -10,29 +10,14 @@
 //
 // Every function takes a template flag F: true uses std::fma (to be
 // instantiated only inside a function compiled for a target with an FMA
-// instruction, see dd_kernels.cpp), false uses Dekker's product (portable).
+// instruction: common/isa.hpp), false uses Dekker's product (portable).
 // Everything is inline, allocation-free and noexcept.
 #pragma once
 
 #include <cmath>
 
-// Which variant a kernel file builds (dd_kernels.cpp, overlap_dd.cpp):
-// PW85_DD_STATIC_FMA when the whole build targets FMA (F = true only);
-// PW85_DD_DISPATCH on x86 with GCC/Clang otherwise (both variants, the FMA
-// one under __attribute__((target("fma"))), chosen by cpu_has_fma());
-// neither elsewhere (F = false only).
-#if defined(__FMA__)
-#define PW85_DD_STATIC_FMA 1
-#elif (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
-#define PW85_DD_DISPATCH 1
-#endif
-
 namespace pw85 {
 namespace dd {
-
-#ifdef PW85_DD_DISPATCH
-inline bool cpu_has_fma() noexcept { return __builtin_cpu_supports("fma"); }
-#endif
 
 struct DD {
   double hi, lo;

@@ -1,15 +1,30 @@
-// The one-pass argument screens of the hot paths: pw85_overlap's (called
-// from src/core/overlap.cpp so that it is compiled into each instruction-set
-// variant of that path) and the pivot test that pw85_contact_function_method's
-// screen shares with it (src/capi/validate.hpp, screen_contact_pair).
-// Shared meaning with src/capi/validate.hpp: ldl_positive there makes the
-// same decisions, one matrix at a time.
+// Argument screens of the hot paths, called from the core so that they are
+// compiled into each instruction-set variant of those paths: the positive
+// definiteness test by L D L^T pivots (ldl_positive, one matrix; the C
+// layer's validation uses it too), the same test for two matrices in two
+// lanes, and the one-pass screens of pw85_overlap (overlap/overlap.cpp) and
+// pw85_contact_function_method (contact/methods.cpp).
 #pragma once
 
 #include <cmath>
 #include <cstring>
 
 namespace pw85 {
+
+// Positive definiteness by the pivots of L D L^T of the symmetric matrix a
+// (Sym3 storage): all > 0. No square roots; the same decisions as a
+// Cholesky factorisation up to rounding. a must be finite.
+inline bool ldl_positive(double const *a) noexcept {
+  double const d0 = a[0];
+  if (!(d0 > 0.0)) return false;
+  double const i0 = 1.0 / d0;
+  double const l1 = a[1] * i0, l2 = a[2] * i0;
+  double const d1 = a[3] - l1 * a[1];
+  if (!(d1 > 0.0)) return false;
+  double const e = a[4] - l2 * a[1];
+  double const d2 = a[5] - l2 * a[2] - (e / d1) * e;  // no overflow of e * e
+  return d2 > 0.0 && d2 <= 0x1.fffffffffffffp1023;   // false for NaN, +Inf
+}
 
 // Two-lane helpers (GCC/Clang vector extension, one SSE2 register).
 namespace v2 {
@@ -28,7 +43,7 @@ inline D2 lo_lanes(D2 a, D2 b) noexcept { return __builtin_shuffle(a, b, I2{0, 2
 inline D2 hi_lanes(D2 a, D2 b) noexcept { return __builtin_shuffle(a, b, I2{1, 3}); }
 }  // namespace v2
 
-// The L D L^T pivot test of ldl_positive (src/capi/validate.hpp: all pivots
+// The L D L^T pivot test of ldl_positive (above: all pivots
 // > 0 and finite) for q1 and q2 at once, given as their three lane pairs
 // a01, a23, a45 and b01, b23, b45: each lane performs exactly the scalar
 // operations of ldl_positive (same decisions), computed whatever the earlier
@@ -70,6 +85,29 @@ inline bool screen_pair_ldl(double const *r, double const *q1, double const *q2,
   bool const r_ok =
       (std::fabs(r[0]) <= hi) & (std::fabs(r[1]) <= hi) & (std::fabs(r[2]) <= hi);
   return r_ok & (qm >= lo) & (qm <= hi) & ldl_pivots_positive(a01, a23, a45, b01, b23, b45);
+}
+
+// The same kind of screen for pw85_contact_function_method: true when q1 and
+// q2 pass ldl_positive and max |r_i|, max |Q1_ij|, max |Q2_ij| each lie
+// strictly inside (lo, hi) (so r != 0 and everything is finite: a NaN entry
+// of a matrix fails a pivot, a NaN in r fails |r_i| < hi). False: take the
+// general path (validation, then the dispatcher's scaling).
+inline bool screen_contact_pair(double const *r, double const *q1, double const *q2,
+                                double lo, double hi) noexcept {
+  // The two matrices side by side in the two lanes.
+  using v2::D2;
+  D2 const a01 = v2::load(q1), a23 = v2::load(q1 + 2), a45 = v2::load(q1 + 4);
+  D2 const b01 = v2::load(q2), b23 = v2::load(q2 + 2), b45 = v2::load(q2 + 4);
+  // A NaN in a matrix may be skipped by the maxima; it reaches a pivot below.
+  D2 const ma = v2::max(v2::max(v2::abs(a01), v2::abs(a23)), v2::abs(a45));
+  D2 const mb = v2::max(v2::max(v2::abs(b01), v2::abs(b23)), v2::abs(b45));
+  double const m1 = ma[0] > ma[1] ? ma[0] : ma[1], m2 = mb[0] > mb[1] ? mb[0] : mb[1];
+  double const r0 = std::fabs(r[0]), r1 = std::fabs(r[1]), r2 = std::fabs(r[2]);
+  // max |r_i| > lo as "some |r_i| > lo": the maximum written as nested
+  // conditionals was compiled to a branch on r0 > r1, taken at random.
+  bool const in = (r0 < hi) & (r1 < hi) & (r2 < hi) & ((r0 > lo) | (r1 > lo) | (r2 > lo)) &
+                  (m1 > lo) & (m1 < hi) & (m2 > lo) & (m2 < hi);
+  return in & ldl_pivots_positive(a01, a23, a45, b01, b23, b45);
 }
 
 }  // namespace pw85

@@ -1,5 +1,8 @@
 // Common result type and entry points of the contact-function methods. Each
-// method lives in its own source file of src/core/ (brent.cpp, ...).
+// method lives in its own source file of this folder (brent.cpp, ...); the
+// table of methods is in methods.cpp. A new method: a value before
+// kMethodCount below, a PW85_METHOD_* macro in include/pw85.h, its source
+// file and its row in methods.cpp's table.
 // Preconditions, checked by the C layer: r, q1, q2 finite; q1, q2 positive
 // definite.
 #pragma once
@@ -21,15 +24,18 @@ struct ContactResult {
 Status contact_brent(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                      ContactResult &res) noexcept;
 
-// ---- issue 7: methods selected by pw85_contact_function_method ----------
-// Method identifiers; equal to the PW85_METHOD_* macros of include/pw85.h.
+// Method identifiers of pw85_contact_function_method; equal to the
+// PW85_METHOD_* macros of include/pw85.h (checked in src/capi).
 enum Method : int {
   kMethodDefault = 0,
   kMethodBrent = 1,
   kMethodNewton = 2,
   kMethodRational = 3,
   kMethodZheng = 4,
+  kMethodCount  // number of methods: the valid identifiers are 0 .. kMethodCount - 1
 };
+
+constexpr bool is_method(int method) noexcept { return method >= 0 && method < kMethodCount; }
 
 // Documented relative accuracy of mu2 for each method (docs/methods.md): a
 // method returns kInaccurate when its error estimate exceeds this times mu2.
@@ -46,7 +52,8 @@ struct MethodResult {
   int method;        // method actually used (Method)
 };
 
-// Entry point of pw85_contact_function_method (src/core/methods.cpp): handles
+// The contact function by method, for arguments the caller has checked
+// (contact/methods.cpp): handles
 // r = 0, rescales r and Q by powers of two when needed, dispatches, checks
 // the documented accuracy. Returns kOk, kNoConvergence, kInaccurate or
 // kUnknownMethod (res filled with NaN for the last).
@@ -58,19 +65,29 @@ Status contact_method(int method, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
 constexpr double kSafeLo = 0x1p-60, kSafeHi = 0x1p60;
 
 // contact_method without its preliminaries, for callers that have checked
-// them (the C layer's one-pass screen): method in [kMethodDefault,
-// kMethodZheng], r != 0 and every magnitude in (kSafeLo, kSafeHi).
+// them (contact_method_entry's one-pass screen): is_method(method), r != 0
+// and every magnitude in (kSafeLo, kSafeHi).
 Status contact_method_in_range(int method, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                                MethodResult &res) noexcept;
+
+// Entry of pw85_contact_function_method (contact/methods.cpp) for non-null
+// pointers whose values are not yet checked: one screening pass recognises
+// valid arguments of moderate magnitude (nearly all calls) and sends them to
+// contact_method_in_range (DEFAULT on x86-64-v4: to contact_default_v4);
+// the others are validated, then go to contact_method. Returns as
+// contact_method, plus kInvalidArgument (NaN or infinite value) and kNotSpd
+// (res not written for these two).
+Status contact_method_entry(double const *r12, double const *q1, double const *q2, int method,
+                            MethodResult &res) noexcept;
 
 // The methods themselves (one source file each). Preconditions: r != 0,
 // moderate magnitudes (see contact_method).
 Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                        MethodResult &res) noexcept;      // default.cpp
-#if PW85_ISA_DISPATCH
+#if PW85_ISA_LEVELS
 // contact_default's x86-64-v4 variant (default.cpp), for callers that have
-// checked the CPU (the C layer's v4 entry, src/capi/contact_method.cpp);
-// also sets res.method.
+// checked the CPU (contact_method_entry's v4 variant); also sets
+// res.method.
 Status contact_default_v4(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                           MethodResult &res) noexcept;
 #endif

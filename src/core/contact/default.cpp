@@ -315,7 +315,7 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
   return res.mu2_error <= kDefaultRelAccuracy * res.mu2 ? kOk : kInaccurate;
 }
 
-#if PW85_ISA_DISPATCH
+#if PW85_ISA_LEVELS
 // Relative error of f from f_eval_rational (f_rational_dd.hpp): 2.2 u from
 // the coefficients, about 13 u from the evaluation of A / B and s t.
 constexpr double kRationalRel = 16.0 * kU;
@@ -380,7 +380,7 @@ PW85_V4_INLINE bool rational_v4(
 // src/meson.build). Out of line: inlined into
 // contact_default_v4 below, its register use made every call save and
 // restore every callee-saved register, the rational step's calls included.
-__attribute__((target("arch=x86-64-v4"), noinline)) Status default_body_v4(
+PW85_TARGET_V4 __attribute__((noinline)) Status default_body_v4(
     Vec3 const &r, Sym3 const &q1, Sym3 const &q2, MethodResult &res) noexcept {
   return default_body(r, q1, q2, res);
 }
@@ -388,12 +388,12 @@ __attribute__((target("arch=x86-64-v4"), noinline)) Status default_body_v4(
 
 }  // namespace
 
-#if PW85_ISA_DISPATCH
+#if PW85_ISA_LEVELS
 // DEFAULT on x86-64-v4 (contact.hpp): the rational step, and the general
 // method when it declines. (Until the fourteenth session nearly round pairs
 // went to the general method first; docs/methods.md, "The round test
 // removed".)
-__attribute__((target("arch=x86-64-v4"))) Status contact_default_v4(Vec3 const &r,
+PW85_TARGET_V4 Status contact_default_v4(Vec3 const &r,
                                                                      Sym3 const &q1,
                                                                      Sym3 const &q2,
                                                                      MethodResult &res) noexcept {
@@ -405,8 +405,8 @@ __attribute__((target("arch=x86-64-v4"))) Status contact_default_v4(Vec3 const &
 
 Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                        MethodResult &res) noexcept {
-#if PW85_ISA_DISPATCH
-  if (__builtin_cpu_supports("x86-64-v4")) return contact_default_v4(r, q1, q2, res);
+#if PW85_ISA_LEVELS
+  if (isa::has_v4()) return contact_default_v4(r, q1, q2, res);
 #endif
   return default_body(r, q1, q2, res);
 }

@@ -25,7 +25,7 @@
 
 #include "contact/start.hpp"
 
-#if PW85_ISA_DISPATCH
+#if PW85_ISA_LEVELS
 #include <immintrin.h>
 
 namespace pw85 {

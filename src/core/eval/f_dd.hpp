@@ -1,4 +1,4 @@
-// f(lambda) and f'(lambda) in double-double arithmetic (src/core/dd.hpp),
+// f(lambda) and f'(lambda) in double-double arithmetic (arith/dd.hpp),
 // for the final steps of PW85_METHOD_DEFAULT (docs/methods.md, eq. (M11)).
 // Q(lambda) = (1 - lambda) Q1 + lambda Q2 is formed as double-doubles
 // (1 - lambda and the products are error-free transformations of the double
@@ -8,10 +8,10 @@
 #pragma once
 
 #include "arith/dd.hpp"
-#if defined(PW85_DD_STATIC_FMA) || defined(PW85_DD_DISPATCH)
+#include "common/isa.hpp"
+#if PW85_ISA_STATIC_FMA || PW85_ISA_FMA
 #include <immintrin.h>
 #endif
-#include "common/isa.hpp"
 #include "common/sym3.hpp"
 
 namespace pw85 {
@@ -152,7 +152,7 @@ PW85_ALWAYS_INLINE double f_stationary_impl(double lambda, Vec3 const &r, Sym3 c
   return stationary_combine(lambda, a + ca, b1 + c1, b2 + c2);
 }
 
-#if defined(PW85_DD_STATIC_FMA) || defined(PW85_DD_DISPATCH)
+#if PW85_ISA_STATIC_FMA || PW85_ISA_FMA
 // two_sum (dd.hpp) lane by lane.
 inline __attribute__((always_inline, target("fma"))) __m256d avx_two_sum(__m256d a, __m256d b,
                                                                           __m256d &err) noexcept {

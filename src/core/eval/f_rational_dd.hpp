@@ -23,7 +23,7 @@
 #include "common/isa.hpp"
 #include "common/sym3.hpp"
 
-#if PW85_ISA_DISPATCH
+#if PW85_ISA_LEVELS
 #include <immintrin.h>
 #endif
 
@@ -36,7 +36,7 @@ struct RationalDD {
   double scale;
 };
 
-#if PW85_ISA_DISPATCH
+#if PW85_ISA_LEVELS
 namespace rdd {
 
 struct DD {

@@ -622,7 +622,7 @@ namespace {
   return true;
 }
 
-#if PW85_ISA_DISPATCH
+#if PW85_ISA_LEVELS
 // The same code compiled for the x86-64 levels v4 (AVX-512: 32 vector
 // registers, fewer spills of the bounded values) and v3 (AVX2), chosen at
 // run time (docs/overlap.md, "Instruction sets"). This file is built with
@@ -630,13 +630,13 @@ namespace {
 // fuse some a * b + c into FMAs; every bound of the filters holds for a
 // fused operation too (the product's rounding error is then 0), so the
 // verdicts do not depend on the variant.
-__attribute__((target("arch=x86-64-v4"))) bool screened_v4(double const *rp,
+PW85_TARGET_V4 bool screened_v4(double const *rp,
                                                             double const *q1p,
                                                             double const *q2p, int &verdict,
                                                             Status &status) noexcept {
   return screened_body(rp, q1p, q2p, verdict, status);
 }
-__attribute__((target("arch=x86-64-v3"))) bool screened_v3(double const *rp,
+PW85_TARGET_V3 bool screened_v3(double const *rp,
                                                             double const *q1p,
                                                             double const *q2p, int &verdict,
                                                             Status &status) noexcept {
@@ -648,9 +648,9 @@ __attribute__((target("arch=x86-64-v3"))) bool screened_v3(double const *rp,
 
 bool overlap_screened(double const *rp, double const *q1p, double const *q2p, int &verdict,
                       Status &status) noexcept {
-#if PW85_ISA_DISPATCH
-  if (__builtin_cpu_supports("x86-64-v4")) return screened_v4(rp, q1p, q2p, verdict, status);
-  if (__builtin_cpu_supports("x86-64-v3")) return screened_v3(rp, q1p, q2p, verdict, status);
+#if PW85_ISA_LEVELS
+  if (isa::has_v4()) return screened_v4(rp, q1p, q2p, verdict, status);
+  if (isa::has_v3()) return screened_v3(rp, q1p, q2p, verdict, status);
 #endif
   return screened_body(rp, q1p, q2p, verdict, status);
 }

@@ -2,9 +2,9 @@
 // eq. (O15)). Products of doubles are exact (two_prod), so the 2x2 minors of
 // the input matrices carry one rounding of 2^-106 relative to their own value
 // instead of 2^-53 relative to the size of their terms. Every kernel is
-// compiled twice on x86, with FMA (two_prod in two operations) and with
-// Dekker's product, and chosen at run time like those of dd_kernels.cpp; the
-// certificates hold for either (the bounds of (O15) cover both).
+// compiled with FMA (two_prod in two operations) and with Dekker's product,
+// chosen at run time (common/isa.hpp); the certificates hold for either (the
+// bounds of (O15) cover both).
 #include "overlap/overlap_dd.hpp"
 
 #include <cmath>
@@ -127,58 +127,53 @@ PW85_ALWAYS_INLINE double p_impl(double l, Vec3 const &r, Sym3 const &q1,
   return dd::to_double(p);
 }
 
-// FMA variants for the run-time choice (dd.hpp).
-#ifdef PW85_DD_DISPATCH
-__attribute__((target("fma"))) double witness_g_fma(Sym3 const &q, Vec3 const &x,
+// FMA variants for the run-time choice (common/isa.hpp).
+#if PW85_ISA_FMA
+PW85_TARGET_FMA double witness_g_fma(Sym3 const &q, Vec3 const &x,
                                                     Vec3 const &c) noexcept {
   return witness_g_impl<true>(q, x, c);
 }
-__attribute__((target("fma"))) bool witness_point_fma(double l, Vec3 const &r, Sym3 const &q1,
+PW85_TARGET_FMA bool witness_point_fma(double l, Vec3 const &r, Sym3 const &q1,
                                                       Sym3 const &q2, bool from_c2, Vec3 &hi,
                                                       Vec3 &lo, double &df) noexcept {
   return witness_point_impl<true>(l, r, q1, q2, from_c2, hi, lo, df);
 }
-__attribute__((target("fma"))) void witness_pair_fma(Sym3 const &q1, Sym3 const &q2,
+PW85_TARGET_FMA void witness_pair_fma(Sym3 const &q1, Sym3 const &q2,
                                                      Vec3 const &r, Vec3 const &hi,
                                                      Vec3 const &lo, bool from_c2,
                                                      double g[2]) noexcept {
   witness_pair_impl<true>(q1, q2, r, hi, lo, from_c2, g);
 }
-__attribute__((target("fma"))) double p_fma(double l, Vec3 const &r, Sym3 const &q1,
+PW85_TARGET_FMA double p_fma(double l, Vec3 const &r, Sym3 const &q1,
                                             Sym3 const &q2) noexcept {
   return p_impl<true>(l, r, q1, q2);
 }
-using dd::cpu_has_fma;
 #endif
 
 // The variant used when not dispatched: FMA when the whole build targets it.
-#ifdef PW85_DD_STATIC_FMA
-constexpr bool kF = true;
-#else
-constexpr bool kF = false;
-#endif
+constexpr bool kF = isa::kStaticFma;
 
 }  // namespace
 
 double witness_g_dd(Sym3 const &q, Vec3 const &x, Vec3 const &c) noexcept {
-#ifdef PW85_DD_DISPATCH
-  if (cpu_has_fma()) return witness_g_fma(q, x, c);
+#if PW85_ISA_FMA
+  if (isa::has_fma()) return witness_g_fma(q, x, c);
 #endif
   return witness_g_impl<kF>(q, x, c);
 }
 
 bool witness_point_dd(double l, Vec3 const &r, Sym3 const &q1, Sym3 const &q2, bool from_c2,
                       Vec3 &hi, Vec3 &lo, double &df) noexcept {
-#ifdef PW85_DD_DISPATCH
-  if (cpu_has_fma()) return witness_point_fma(l, r, q1, q2, from_c2, hi, lo, df);
+#if PW85_ISA_FMA
+  if (isa::has_fma()) return witness_point_fma(l, r, q1, q2, from_c2, hi, lo, df);
 #endif
   return witness_point_impl<kF>(l, r, q1, q2, from_c2, hi, lo, df);
 }
 
 void witness_pair_dd(Sym3 const &q1, Sym3 const &q2, Vec3 const &r, Vec3 const &hi,
                      Vec3 const &lo, bool from_c2, double g[2]) noexcept {
-#ifdef PW85_DD_DISPATCH
-  if (cpu_has_fma()) {
+#if PW85_ISA_FMA
+  if (isa::has_fma()) {
     witness_pair_fma(q1, q2, r, hi, lo, from_c2, g);
     return;
   }
@@ -187,8 +182,8 @@ void witness_pair_dd(Sym3 const &q1, Sym3 const &q2, Vec3 const &r, Vec3 const &
 }
 
 double p_dd(double l, Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
-#ifdef PW85_DD_DISPATCH
-  if (cpu_has_fma()) return p_fma(l, r, q1, q2);
+#if PW85_ISA_FMA
+  if (isa::has_fma()) return p_fma(l, r, q1, q2);
 #endif
   return p_impl<kF>(l, r, q1, q2);
 }
