@@ -1,7 +1,6 @@
-// extern "C" layer of the scene API (issue 6): pw85_overlap, pw85_contact and
-// the batch calls over index pairs of a scene. Validation and status mapping
-// only; the work is in src/core/overlap.cpp, overlap_exact.cpp and
-// contact_geometry.cpp. The batch loops are parallelised with OpenMP when the
+// extern "C" layer of the scene API: pw85_overlap, pw85_contact and the
+// batch calls over index pairs of a scene. Validation and status mapping
+// only; the work is in src/core/overlap/ and src/core/geometry/. The batch loops are parallelised with OpenMP when the
 // library is built with it; each pair is computed by exactly the code of the
 // one-pair function, so results do not depend on the number of threads.
 #include <cmath>

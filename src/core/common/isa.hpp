@@ -42,6 +42,7 @@
 
 #if defined(__FMA__)
 #define PW85_ISA_STATIC_FMA 1
+#define PW85_TARGET_FMA
 #else
 #define PW85_ISA_STATIC_FMA 0
 #endif

@@ -31,10 +31,10 @@ inline Sym3 load_sym3(double const *p) noexcept {
 
 // The caller's arrays seen as Vec3 / Sym3, without a copy: the struct is
 // exactly its array (checked below) and every access reads a double. For
-// the C layer's hot path (src/capi/contact_method.cpp): a copy on the stack
-// is read back by the AVX-512 code of DEFAULT with wide loads that span
-// several of the copy's stores, which cannot be forwarded and wait for them
-// (docs/methods.md, "The C entry (thirteenth session)").
+// the hot path of pw85_contact_function_method (contact_method_entry): a
+// copy on the stack is read back by the AVX-512 code of DEFAULT with wide
+// loads that span several of the copy's stores, which cannot be forwarded
+// and wait for them.
 static_assert(sizeof(Vec3) == kDim * sizeof(double) && alignof(Vec3) == alignof(double),
               "Vec3 must be exactly double[3]");
 static_assert(sizeof(Sym3) == kSym * sizeof(double) && alignof(Sym3) == alignof(double),

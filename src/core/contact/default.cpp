@@ -390,13 +390,9 @@ PW85_TARGET_V4 __attribute__((noinline)) Status default_body_v4(
 
 #if PW85_ISA_LEVELS
 // DEFAULT on x86-64-v4 (contact.hpp): the rational step, and the general
-// method when it declines. (Until the fourteenth session nearly round pairs
-// went to the general method first; docs/methods.md, "The round test
-// removed".)
-PW85_TARGET_V4 Status contact_default_v4(Vec3 const &r,
-                                                                     Sym3 const &q1,
-                                                                     Sym3 const &q2,
-                                                                     MethodResult &res) noexcept {
+// method when it declines.
+PW85_TARGET_V4 Status contact_default_v4(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                         MethodResult &res) noexcept {
   res.method = kMethodDefault;
   if (rational_v4(r, q1, q2, res)) return kOk;
   return default_body_v4(r, q1, q2, res);

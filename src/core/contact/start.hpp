@@ -80,7 +80,7 @@ PW85_ALWAYS_INLINE double fixed_point_start(Vec3 const &r, Sym3 const &q1, Sym3 
     // up to 2^40, so a1 a2 stays a normal double. Beyond, an overflow makes
     // lambda NaN ((M7) below) and an underflow gives a worse start, never a
     // wrong result. sqrt(a1) sqrt(a2) would avoid both; it measured ~2 %
-    // slower (A/B, one more square root per step).
+    // slower in bench_contact (one more square root per step).
     double const g = std::sqrt(a1 * a2), scale = 1.0 / (a1 + a2);
     lam[k - 1] = a1 / (a1 + g);  // h1 / (h1 + h2), off the chain
     double const c1 = a2 * scale, cm = g * scale, c2 = a1 * scale;

@@ -154,7 +154,7 @@ PW85_ALWAYS_INLINE double f_stationary_impl(double lambda, Vec3 const &r, Sym3 c
 
 #if PW85_ISA_STATIC_FMA || PW85_ISA_FMA
 // two_sum (dd.hpp) lane by lane.
-inline __attribute__((always_inline, target("fma"))) __m256d avx_two_sum(__m256d a, __m256d b,
+PW85_ALWAYS_INLINE PW85_TARGET_FMA __m256d avx_two_sum(__m256d a, __m256d b,
                                                                           __m256d &err) noexcept {
   __m256d const s = _mm256_add_pd(a, b);
   __m256d const bb = _mm256_sub_pd(s, a);
@@ -168,10 +168,9 @@ inline __attribute__((always_inline, target("fma"))) __m256d avx_two_sum(__m256d
 // 0-3 of the symmetric storage, lanes of rr the entries 4-5 and r_0 s_0,
 // r_1 s_1; each quadratic form's terms are summed pairwise by two_sum, the
 // errors accumulated in double (Ogita, Rump and Oishi's Dot2, as above).
-// Same results as the scalar form on 800000 random (lambda, s) and on the
-// 160000 DEFAULT calls of the A/B check; 7-9 ns per DEFAULT call faster in
-// classes 1-3 (docs/methods.md, "Vector form of (M11)").
-inline __attribute__((always_inline, target("fma"))) double f_stationary_avx(
+// Same results as the scalar form on 800000 random (lambda, s); 7-9 ns per
+// DEFAULT call faster in classes 1-3 of bench_contact.
+PW85_ALWAYS_INLINE PW85_TARGET_FMA double f_stationary_avx(
     double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Vec3 const &s) noexcept {
   using namespace dd;
   __m256d const sa = _mm256_setr_pd(s[0], s[0], s[0], s[1]);
