@@ -23,6 +23,18 @@
  * All functions are reentrant and thread-safe: the library has no global
  * mutable state, never prints, never aborts, and never changes GSL's
  * process-wide error handler.
+ *
+ * Results and the CPU: PW85_METHOD_DEFAULT runs a different algorithm on
+ * x86-64 CPUs with AVX-512 (x86-64-v4) when the library is built with
+ * GCC >= 12 and the meson option isa_dispatch enabled (its default): a
+ * rational step in double-double first, the general method only when that
+ * step declines. Its results there may differ in the last bits from those of
+ * another CPU, both within the documented accuracy of the method. This
+ * concerns pw85_contact_function_method() and pw85_dca() with
+ * PW85_METHOD_DEFAULT, pw85_contact() and pw85_contact_batch(). The verdicts
+ * of pw85_overlap() and pw85_overlap_batch() are identical on every CPU
+ * (they are exact). The number of threads of a batch call never changes any
+ * result.
  */
 #ifndef PW85_H
 #define PW85_H
@@ -47,15 +59,18 @@
 #  define PW85_END_DECLS
 #endif
 
-/* Version of this header; the build reads it from here. */
+/* Version of this header (major, minor, patch and the string
+ * "MAJOR.MINOR.PATCH"); the build reads it from here. pw85_version() gives
+ * the version of the library actually loaded. */
 #define PW85_VERSION_MAJOR 2
 #define PW85_VERSION_MINOR 0
 #define PW85_VERSION_PATCH 0
 #define PW85_VERSION "2.0.0"
 
-/* Dimension of the physical space. */
+/* Dimension of the physical space: length of a vector (double[3]). */
 #define PW85_DIM 3
-/* Dimension of the space of symmetric 3x3 matrices. */
+/* Dimension of the space of symmetric 3x3 matrices: length of a matrix
+ * (double[6], upper triangle row by row). */
 #define PW85_SYM 6
 
 /* Absolute tolerance on lambda of the Brent iterations of
@@ -66,7 +81,9 @@
 /* Number of Newton-Raphson refinement steps of pw85_contact_function(). */
 #define PW85_NR_ITER 3
 
-/* Status codes. Negative values are errors; the values are pinned (ABI). */
+/* Status codes returned by the functions of this header; negative values
+ * are errors, the values are pinned (ABI); pw85_strerror() describes them.
+ * Success. */
 #define PW85_OK 0
 /* A pointer argument is NULL or a value is NaN or infinite. */
 #define PW85_ERR_INVALID_ARGUMENT (-1)
@@ -79,17 +96,20 @@
 /* The method argument names no method of this function. */
 #define PW85_ERR_UNKNOWN_METHOD (-5)
 /* A result was computed (and written) but its error estimate exceeds the
- * accuracy the method documents. */
+ * accuracy the method documents (or, for pw85_overlap(), the exact stage
+ * ran out of capacity). */
 #define PW85_ERR_INACCURATE (-6)
 
 PW85_BEGIN_DECLS
 
-/* Returns the version string of the library actually loaded (compare with
- * PW85_VERSION, the version of the header compiled against). */
+/* Version of the library actually loaded. Returns a static string
+ * "MAJOR.MINOR.PATCH" (compare with PW85_VERSION, the version of the header
+ * compiled against). Cannot fail. */
 PW85_API const char *pw85_version(void);
 
-/* Returns a static, human-readable description of a status code. Never NULL;
- * unknown codes give "unknown status". */
+/* Description of a status code. Returns a static, human-readable string,
+ * never NULL; a value that is no status code gives "unknown status".
+ * Cannot fail. */
 PW85_API const char *pw85_strerror(int status);
 
 /* Cholesky decomposition A = L L^T of a symmetric positive definite matrix a.
@@ -97,27 +117,31 @@ PW85_API const char *pw85_strerror(int status);
  *     L = [l[0]  0     0   ]
  *         [l[1]  l[3]  0   ]
  *         [l[2]  l[4]  l[5]].
- * If A is not positive definite (or holds NaN), all six entries of l are set
- * to NaN. NULL pointers: nothing is written. (pw85 1.0 signature.) */
+ * Returns nothing (pw85 1.0 signature). Fails when A is not positive
+ * definite or holds NaN: all six entries of l are then NaN. A NULL pointer:
+ * nothing is written. */
 PW85_API void pw85__cholesky_decomp(double const a[PW85_SYM],
                                     double l[PW85_SYM]);
 
 /* Solves L L^T x = b by forward and backward substitution, l as returned by
- * pw85__cholesky_decomp(). NULL pointers: nothing is written.
- * (pw85 1.0 signature.) */
+ * pw85__cholesky_decomp(); writes the solution to x. Returns nothing
+ * (pw85 1.0 signature). l is not checked: a NaN-filled l gives a NaN x. A
+ * NULL pointer: nothing is written. */
 PW85_API void pw85__cholesky_solve(double const l[PW85_SYM],
                                    double const b[PW85_DIM],
                                    double x[PW85_DIM]);
 
 /* Quadratic form of a spheroid of equatorial radius a, polar radius c and
- * unit axis of revolution n: Q = a^2 I + (c^2 - a^2) n n^T. The caller is
- * responsible for |n| = 1. Bad input (a or c not > 0, NaN or infinite
- * values, n = 0): q is filled with NaN. (pw85 1.0 signature.) */
+ * unit axis of revolution n: writes Q = a^2 I + (c^2 - a^2) n n^T to q.
+ * Returns nothing (pw85 1.0 signature). The caller is responsible for
+ * |n| = 1. Fails on a or c not > 0, NaN or infinite values, n = 0 or n NULL:
+ * q is then filled with NaN (q NULL: nothing is written). */
 PW85_API void pw85_spheroid(double a, double c, double const n[PW85_DIM],
                             double q[PW85_SYM]);
 
-/* Quadratic form of a general ellipsoid: Q = sum_i radii[i]^2 v_i v_i^T where
- * v_i = (axes[3i], axes[3i+1], axes[3i+2]) is the i-th row of axes.
+/* Quadratic form of a general ellipsoid: writes Q = sum_i radii[i]^2 v_i v_i^T
+ * to q, where v_i = (axes[3i], axes[3i+1], axes[3i+2]) is the i-th row of
+ * axes.
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL pointer, NaN or infinite
  * values), PW85_ERR_NOT_SPD (a radius <= 0) or PW85_ERR_NOT_ORTHONORMAL
  * (|axes axes^T - I| > 1e-10 entrywise). On error q is filled with NaN (when
@@ -130,15 +154,18 @@ PW85_API int pw85_ellipsoid(double const radii[PW85_DIM],
  *     f(lambda) = lambda (1 - lambda) r12^T Q^{-1} r12,
  *     Q = (1 - lambda) Q1 + lambda Q2,
  * evaluated through a Cholesky decomposition of Q. params holds r12, q1 and
- * q2 one after the other (15 doubles). The signature matches gsl_function.
- * Returns NaN for NULL params, non-finite values or a Q that is not positive
- * definite. (pw85 1.0 signature.) */
+ * q2 one after the other (15 doubles). The signature is pw85 1.0's and
+ * matches gsl_function. Fails with NaN for NULL params, a NaN or infinite
+ * value, or a Q that is not positive definite. */
 PW85_API double pw85_f_neg(double lambda, double const *params);
 
-/* Residual g(lambda) = mu2^2 - mu1^2 of the Newton refinement (pw85 1.0
- * documentation, chapter 5, eqs. (4)-(5)). Writes
+/* Residual g(lambda) = mu2^2 - mu1^2 of the Newton refinement of
+ * pw85_contact_function() (pw85 1.0 documentation, chapter 5,
+ * eqs. (4)-(5)). Writes
  *     out[0] = f(lambda), out[1] = g(lambda), out[2] = g'(lambda).
- * Bad input: out is filled with NaN. (pw85 1.0 signature.) */
+ * Returns nothing (pw85 1.0 signature). Fails on a NULL pointer, a NaN or
+ * infinite value, or a Q(lambda) that is not positive definite: out is then
+ * filled with NaN (out NULL: nothing is written). */
 PW85_API void pw85__residual(double lambda, double const r12[PW85_DIM],
                              double const q1[PW85_SYM],
                              double const q2[PW85_SYM], double out[3]);
@@ -152,8 +179,10 @@ PW85_API void pw85__residual(double lambda, double const r12[PW85_DIM],
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity),
  * PW85_ERR_NOT_SPD (q1 or q2 not positive definite) or
  * PW85_ERR_NO_CONVERGENCE (Brent did not reach PW85_LAMBDA_ATOL in
- * PW85_MAX_ITER iterations; the estimate is still written). On the first two
- * errors out is filled with NaN (when out is not NULL). */
+ * PW85_MAX_ITER iterations and the refined residual does not show
+ * convergence; the estimate is still written, mu^2 NaN if f could not be
+ * evaluated). On the first two errors out is filled with NaN (when out is
+ * not NULL). */
 PW85_API int pw85_contact_function(double const r12[PW85_DIM],
                                    double const q1[PW85_SYM],
                                    double const q2[PW85_SYM], double out[2]);
@@ -167,34 +196,27 @@ PW85_API int pw85_contact_function(double const r12[PW85_DIM],
  * In 2D an ellipse is {m : (m - c)^T Q^{-1} (m - c) <= 1} with Q symmetric
  * positive definite stored as its upper triangle q = {Q00, Q01, Q11}.
  * Directions u need not be unit vectors: any finite non-zero u is normalised.
- * On error the outputs are NaN (when their pointers are not NULL). */
-
-/* Method identifiers (shared with pw85_contact_function_method). */
-#ifndef PW85_METHOD_DEFAULT
-#  define PW85_METHOD_DEFAULT 0
-#endif
-#ifndef PW85_METHOD_BRENT
-#  define PW85_METHOD_BRENT 1
-#endif
-#ifndef PW85_METHOD_ZHENG
-#  define PW85_METHOD_ZHENG 4
-#endif
+ * The method identifiers PW85_METHOD_* are defined with
+ * pw85_contact_function_method() below. */
 
 /* Default absolute tolerance (radians) on the angle of the cutting plane of
  * the plane-rotation method (pw85_dca with PW85_METHOD_ZHENG, pw85_dca_ex
  * with theta_tol = 0). The error of d it leaves is of order
  * d''(theta) tol^2 / 2, far below the rounding errors (docs/dca.md). */
 #define PW85_DCA_THETA_TOL 1e-8
-/* Budget of 2D evaluations (cutting planes) of the plane-rotation method. */
+/* Budget of 2D evaluations (cutting planes) of the plane-rotation method;
+ * exhausting it gives PW85_ERR_NO_CONVERGENCE. */
 #define PW85_DCA_MAX_EVAL 100
 
 /* Distance of closest approach of two ellipses centred on a line of direction
  * u, by the closed-form solution of the 2D problem (Zheng & Palffy-Muhoray,
  * Phys. Rev. E 75, 061709 (2007): a quartic, solved by Ferrari's method, its
  * physical root polished by a safeguarded Newton iteration).
+ * Writes d to *d. q1, q2: 2D storage {Q00, Q01, Q11}.
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity, u = 0),
  * PW85_ERR_NOT_SPD (q1 or q2 not positive definite) or
- * PW85_ERR_NO_CONVERGENCE (polishing did not converge; *d still written). */
+ * PW85_ERR_NO_CONVERGENCE (polishing did not converge; *d still written).
+ * On the other errors *d is NaN (when d is not NULL). */
 PW85_API int pw85_dca_2d(double const u[2], double const q1[3],
                          double const q2[3], double *d);
 
@@ -205,12 +227,14 @@ PW85_API int pw85_dca_2d(double const u[2], double const q1[3],
  * safeguarded Newton iteration on f'. r12 = 0 gives mu^2 = 0, lambda = 0.5.
  * pw85_dca_2d(u) = 1 / sqrt(out[0]) for r12 = u / |u|.
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity),
- * PW85_ERR_NOT_SPD or PW85_ERR_NO_CONVERGENCE (estimate still written). */
+ * PW85_ERR_NOT_SPD (q1 or q2 not positive definite) or
+ * PW85_ERR_NO_CONVERGENCE (estimate still written). On the first two
+ * errors out is filled with NaN (when out is not NULL). */
 PW85_API int pw85_contact_function_2d(double const r12[2], double const q1[3],
                                       double const q2[3], double out[2]);
 
 /* Distance of closest approach of two ellipsoids centred on a line of
- * direction u. method:
+ * direction u, written to *d. method:
  *  - PW85_METHOD_ZHENG: rotation of a plane through the line of centres, the
  *    2D problem of the two sections solved as by pw85_dca_2d (Zheng,
  *    Iglesias & Palffy-Muhoray, 2008), tolerance PW85_DCA_THETA_TOL;
@@ -219,7 +243,10 @@ PW85_API int pw85_contact_function_2d(double const r12[2], double const q1[3],
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity, u = 0),
  * PW85_ERR_NOT_SPD, PW85_ERR_UNKNOWN_METHOD, or, with *d still written,
  * PW85_ERR_NO_CONVERGENCE or PW85_ERR_INACCURATE (as returned by
- * pw85_contact_function_method for the contact-function methods). */
+ * pw85_contact_function_method for the contact-function methods; ZHENG
+ * returns no PW85_ERR_INACCURATE). On the other errors *d is NaN (when d is
+ * not NULL). With PW85_METHOD_DEFAULT the last bits of d may depend on the
+ * CPU (top of this header). */
 PW85_API int pw85_dca(double const u[PW85_DIM], double const q1[PW85_SYM],
                       double const q2[PW85_SYM], int method, double *d);
 
@@ -228,22 +255,27 @@ PW85_API int pw85_dca(double const u[PW85_DIM], double const q1[PW85_SYM],
  * plane, reporting in *evaluations (may be NULL) the number of 2D problems
  * solved (at most PW85_DCA_MAX_EVAL). Returns as pw85_dca, plus
  * PW85_ERR_INVALID_ARGUMENT for a negative or non-finite theta_tol and
- * PW85_ERR_NO_CONVERGENCE when the budget is exhausted. */
+ * PW85_ERR_NO_CONVERGENCE when the budget is exhausted (*d still written).
+ * *d is NaN on the other errors (when d is not NULL). */
 PW85_API int pw85_dca_ex(double const u[PW85_DIM], double const q1[PW85_SYM],
                          double const q2[PW85_SYM], double theta_tol,
                          double *d, int *evaluations);
 
-/* ---- Method-selecting contact function (issue 7) ------------------------
- * Methods of pw85_contact_function_method(); the values are pinned (ABI).
- * Their formulas, cost and accuracy are in docs/methods.md. */
+/* ---- Method-selecting contact function ------------------------------------
+ * Methods of pw85_contact_function_method() and pw85_dca(); the values are
+ * pinned (ABI). Their formulas, cost and accuracy are in docs/methods.md. */
+
 /* The recommended method: safeguarded Halley iteration in double (adjugate
  * of Q(lambda)); when the estimated error exceeds 4e-15 mu2, f is
  * re-evaluated by a compensated (double-double) stationary form, then if
- * needed by L D L^T in double-double. Documented relative accuracy of mu2:
- * 1e-14. */
+ * needed by L D L^T in double-double. On x86-64 CPUs with AVX-512 (GCC >= 12,
+ * isa_dispatch enabled) a rational step in double-double comes first, so the
+ * last bits may differ from another CPU's (top of this header). Documented
+ * relative accuracy of mu2: 1e-14. */
 #define PW85_METHOD_DEFAULT 0
 /* pw85 1.0's algorithm, what pw85_contact_function() computes (Brent, then
- * Newton on the residual). Documented relative accuracy: 1e-10. */
+ * Newton on the residual, mu2 by a compensated form). Documented relative
+ * accuracy: 1e-10. */
 #define PW85_METHOD_BRENT 1
 /* Safeguarded Halley iteration on f' = -g bracketed in [0, 1], f and its
  * derivatives in double through LDL^T of Q(lambda). Documented relative
@@ -266,7 +298,8 @@ typedef struct pw85_result {
   double lambda;    /* maximiser of f on [0, 1] (0.5 when r12 = 0) */
   double mu2_error; /* estimate of the absolute error on mu2 */
   int iterations;   /* iterations of the method: evaluations of f for
-                       DEFAULT, NEWTON, RATIONAL, Brent iterations for BRENT */
+                       DEFAULT, NEWTON, RATIONAL, Brent iterations for BRENT,
+                       2D evaluations (cutting planes) for ZHENG */
   int method;       /* method actually used (a PW85_METHOD_* value; DEFAULT
                        for PW85_METHOD_DEFAULT) */
 } pw85_result;
@@ -284,13 +317,15 @@ typedef struct pw85_result {
  *   PW85_ERR_NOT_SPD           q1 or q2 not positive definite;
  *   PW85_ERR_UNKNOWN_METHOD    method is not a PW85_METHOD_* value.
  * On the last three errors mu2, lambda and mu2_error are NaN and iterations
- * is 0 (nothing is written when res is NULL). Never allocates. */
+ * is 0 (nothing is written when res is NULL). Never allocates. With
+ * PW85_METHOD_DEFAULT the last bits may depend on the CPU (top of this
+ * header). */
 PW85_API int pw85_contact_function_method(double const r12[PW85_DIM],
                                           double const q1[PW85_SYM],
                                           double const q2[PW85_SYM], int method,
                                           pw85_result *res);
 
-/* ---- Overlap, contact geometry and batch calls over a scene (issue 6) ------
+/* ---- Overlap, contact geometry and batch calls over a scene ---------------
  * docs/overlap.md, docs/contact_geometry.md, docs/batch.md. */
 
 /* Exact overlap predicate. Returns 1 when the interiors of the two
@@ -303,7 +338,8 @@ PW85_API int pw85_contact_function_method(double const r12[PW85_DIM],
  * infinity), PW85_ERR_NOT_SPD (q1 or q2 not positive definite, in floating
  * point or, for the pairs reaching the exact stage, exactly) or
  * PW85_ERR_INACCURATE (exact stage out of capacity: only for matrices whose
- * entries span more than about 2^300 in magnitude, docs/overlap.md). */
+ * entries span more than about 2^300 in magnitude, docs/overlap.md). The
+ * verdict is the same on every CPU. */
 PW85_API int pw85_overlap(double const r12[PW85_DIM], double const q1[PW85_SYM],
                           double const q2[PW85_SYM]);
 
@@ -320,11 +356,16 @@ typedef struct pw85_contact_t {
   double depth_n; /* depth projected on the normal: depth (r12/|r12|) . n */
 } pw85_contact_t;
 
-/* Fills *c for the pair (r12 = c2 - c1, q1, q2). Returns PW85_OK,
+/* Contact geometry of the pair (r12 = c2 - c1, q1, q2): fills every field of
+ * *c, mu2 by PW85_METHOD_DEFAULT. Returns PW85_OK,
  * PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity, or r12 = 0 where the
- * geometry is undefined), PW85_ERR_NOT_SPD, or PW85_ERR_NO_CONVERGENCE (the
- * contact-function solve did not converge; estimates still written). On the
- * first two errors every field of *c is NaN (when c is not NULL). */
+ * geometry is undefined), PW85_ERR_NOT_SPD (q1 or q2 not positive definite),
+ * PW85_ERR_NO_CONVERGENCE (the contact-function solve or the contact point
+ * did not converge; the fields hold the estimates, NaN where there is none)
+ * or PW85_ERR_INACCURATE (every field written, but the error estimate of mu2
+ * exceeds PW85_METHOD_DEFAULT's documented accuracy). On the first two
+ * errors every field of *c is NaN (when c is not NULL). The last bits may
+ * depend on the CPU (top of this header). */
 PW85_API int pw85_contact(double const r12[PW85_DIM], double const q1[PW85_SYM],
                           double const q2[PW85_SYM], pw85_contact_t *c);
 
@@ -335,26 +376,43 @@ PW85_API int pw85_contact(double const r12[PW85_DIM], double const q1[PW85_SYM],
  * does, so the results are identical to it and independent of the number of
  * threads. nthreads: number of OpenMP threads (0: the OpenMP default; the
  * process-wide OpenMP settings are never changed; ignored without OpenMP).
- * status (may be NULL) receives the status of each pair (an index >= n gives
- * PW85_ERR_INVALID_ARGUMENT for that pair, as does a negative index). Each returns PW85_OK when every
- * pair succeeded, else the status of the first failing pair (lowest k), or
- * PW85_ERR_INVALID_ARGUMENT with nothing written when a required pointer is
- * NULL, n < 0, m < 0 or nthreads < 0 (m = 0: nothing to do, PW85_OK).
- * Indices and counts are long long (64-bit), so that the header needs no
- * other header and Fortran passes integer(c_long_long). */
+ * status (may be NULL) receives the status of each pair. Indices and counts
+ * are long long (64-bit), so that the header needs no other header and
+ * Fortran passes integer(c_long_long). */
 
-/* overlap[k] = pw85_overlap() of pair k (1, 0, or a negative status). */
+/* Overlap verdicts of m pairs: overlap[k] = pw85_overlap() of pair k (1, 0,
+ * or a negative status), status[k] = PW85_OK or that negative status.
+ * Returns PW85_OK when every pair succeeded (m = 0 included), else the status
+ * of the first failing pair (lowest k): PW85_ERR_INVALID_ARGUMENT (also for
+ * an index < 0 or >= n), PW85_ERR_NOT_SPD or PW85_ERR_INACCURATE, as
+ * pw85_overlap(). Returns PW85_ERR_INVALID_ARGUMENT with nothing written
+ * when m < 0, or when m > 0 and centres, q, pairs or overlap is NULL, n < 0
+ * or nthreads < 0. The verdicts are the same on every CPU. */
 PW85_API int pw85_overlap_batch(long long n, double const *centres, double const *q,
                                 long long m, long long const *pairs, int *overlap,
                                 int *status, int nthreads);
 
-/* out[2k], out[2k+1] = mu^2, lambda of pair k, as pw85_contact_function(). */
+/* Contact functions of m pairs: out[2k], out[2k+1] = mu^2, lambda of pair
+ * k, status[k] its status, as pw85_contact_function(). Returns PW85_OK when
+ * every pair succeeded (m = 0 included), else the status of the first failing
+ * pair (lowest k): PW85_ERR_INVALID_ARGUMENT (also for an index < 0 or >= n;
+ * that pair's out is NaN), PW85_ERR_NOT_SPD or PW85_ERR_NO_CONVERGENCE.
+ * Returns PW85_ERR_INVALID_ARGUMENT with nothing written when m < 0, or
+ * when m > 0 and centres, q, pairs or out is NULL, n < 0 or nthreads < 0. */
 PW85_API int pw85_contact_function_batch(long long n, double const *centres,
                                          double const *q, long long m,
                                          long long const *pairs, double *out,
                                          int *status, int nthreads);
 
-/* c[k] = pw85_contact() of pair k. */
+/* Contact geometry of m pairs: c[k] = pw85_contact() of pair k, status[k]
+ * its status. Returns PW85_OK when every pair succeeded (m = 0 included),
+ * else the status of the first failing pair (lowest k):
+ * PW85_ERR_INVALID_ARGUMENT (also for an index < 0 or >= n; that pair's
+ * fields are NaN), PW85_ERR_NOT_SPD, PW85_ERR_NO_CONVERGENCE or
+ * PW85_ERR_INACCURATE. Returns PW85_ERR_INVALID_ARGUMENT with nothing written
+ * when m < 0, or when m > 0 and centres, q, pairs or c is NULL, n < 0 or
+ * nthreads < 0. As pw85_contact(), the last bits may depend on the CPU (top
+ * of this header). */
 PW85_API int pw85_contact_batch(long long n, double const *centres, double const *q,
                                 long long m, long long const *pairs, pw85_contact_t *c,
                                 int *status, int nthreads);

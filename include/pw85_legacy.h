@@ -52,8 +52,8 @@ PW85_LEGACY_API double pw85_legacy__xT_adjA_x(double const x[PW85_DIM],
  * eqs. (11a), (12a)-(12c)), from its values at lambda = 0, 1 and -1. The
  * caller passes q3 = 2 Q1 - Q2 (entrywise). The coefficients come from
  * differences of these values, so their absolute error is of order
- * DBL_EPSILON times the largest of |a(-1)|, |a(0)|, |a(1)|. NULL pointer: a
- * is filled with NaN (when a is not NULL). */
+ * DBL_EPSILON times the largest of |a(-1)|, |a(0)|, |a(1)|. Returns nothing;
+ * fails on a NULL pointer: a is then filled with NaN (when a is not NULL). */
 PW85_LEGACY_API void pw85_legacy__rT_adjQ_r_as_poly(double const r[PW85_DIM],
                                                     double const q1[PW85_SYM],
                                                     double const q2[PW85_SYM],
@@ -65,8 +65,8 @@ PW85_LEGACY_API void pw85_legacy__rT_adjQ_r_as_poly(double const r[PW85_DIM],
  * eqs. (11b), (12d)-(12g)), from its values at lambda = 0, 1, -1 and 1/2.
  * The caller passes q3 = 2 Q1 - Q2 and q4 = (Q1 + Q2) / 2 (entrywise).
  * Absolute error of order DBL_EPSILON times the largest of |b(-1)|, |b(0)|,
- * |b(1/2)|, |b(1)|. NULL pointer: b is filled with NaN (when b is not
- * NULL). */
+ * |b(1/2)|, |b(1)|. Returns nothing; fails on a NULL pointer: b is then
+ * filled with NaN (when b is not NULL). */
 PW85_LEGACY_API void pw85_legacy__detQ_as_poly(double const q1[PW85_SYM],
                                                double const q2[PW85_SYM],
                                                double const q3[PW85_SYM],
@@ -89,9 +89,9 @@ PW85_LEGACY_API double pw85_legacy_f1(double lambda, double const r12[PW85_DIM],
  * coefficients of pw85_legacy__rT_adjQ_r_as_poly() and
  * pw85_legacy__detQ_as_poly(). Returns f(lambda). If out is not NULL it is a
  * double[3] that receives out[0] = f, out[1] = f', out[2] = f'', the
- * derivatives of the same rational fraction. (Extension: pw85 1.0 wrote only
- * out[0]; a caller of pw85 1.0 that passed a double[1] must now pass a
- * double[3].) Less accurate than pw85_legacy_f1(): the coefficients suffer
+ * derivatives of the same rational fraction. (pw85 1.0 wrote only out[0]: a
+ * pw85 1.0 program that passes a double[1] must pass a double[3].) Less
+ * accurate than pw85_legacy_f1(): the coefficients suffer
  * from cancellation (docs/legacy.md). Bad input: as pw85_legacy_f1(), and
  * NaN when b(lambda) = 0. */
 PW85_LEGACY_API double pw85_legacy_f2(double lambda, double const r12[PW85_DIM],
