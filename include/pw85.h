@@ -31,10 +31,14 @@
  * step declines. Its results there may differ in the last bits from those of
  * another CPU, both within the documented accuracy of the method. This
  * concerns pw85_contact_function_method() and pw85_dca() with
- * PW85_METHOD_DEFAULT, pw85_contact() and pw85_contact_batch(). The verdicts
- * of pw85_overlap() and pw85_overlap_batch() are identical on every CPU
- * (they are exact). The number of threads of a batch call never changes any
- * result.
+ * PW85_METHOD_DEFAULT, pw85_contact() and pw85_contact_batch(). Likewise,
+ * the double-double evaluations that the contact-function methods and
+ * pw85_contact() use in their last steps run with a fused multiply-add on
+ * x86 CPUs that have one, and may differ by an ulp from a CPU without.
+ * Building with isa_dispatch=false gives the portable results everywhere.
+ * The verdicts of pw85_overlap() and pw85_overlap_batch() are identical on
+ * every CPU (they are exact). The number of threads of a batch call never
+ * changes any result.
  */
 #ifndef PW85_H
 #define PW85_H

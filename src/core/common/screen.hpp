@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "common/fp.hpp"
+
 namespace pw85 {
 
 // Positive definiteness by the pivots of L D L^T of the symmetric matrix a
@@ -23,7 +25,7 @@ inline bool ldl_positive(double const *a) noexcept {
   if (!(d1 > 0.0)) return false;
   double const e = a[4] - l2 * a[1];
   double const d2 = a[5] - l2 * a[2] - (e / d1) * e;  // no overflow of e * e
-  return d2 > 0.0 && d2 <= 0x1.fffffffffffffp1023;   // false for NaN, +Inf
+  return d2 > 0.0 && d2 <= kMaxDouble;   // false for NaN, +Inf
 }
 
 // Two-lane helpers (GCC/Clang vector extension, one SSE2 register).
@@ -60,7 +62,7 @@ inline bool ldl_pivots_positive(v2::D2 a01, v2::D2 a23, v2::D2 a45, v2::D2 b01, 
   D2 const d1 = x3 - l1 * x1;
   D2 const e = x4 - l2 * x1;
   D2 const d2 = x5 - l2 * x2 - (e / d1) * e;
-  D2 const big{0x1.fffffffffffffp1023, 0x1.fffffffffffffp1023};
+  D2 const big{kMaxDouble, kMaxDouble};
   v2::I2 const ok = (x0 > 0.0) & (d1 > 0.0) & (d2 > 0.0) & (d2 <= big);
   return (ok[0] & ok[1]) != 0;
 }

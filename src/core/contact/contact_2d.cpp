@@ -19,6 +19,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/fp.hpp"
 #include "dca/dca.hpp"
 #include "common/magnitude.hpp"
 
@@ -26,7 +27,6 @@ namespace pw85 {
 
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr int kMaxIter = 100;
 
 struct Derivatives {

@@ -29,6 +29,7 @@
 //     sign of the double-double f'.
 #include <cmath>
 
+#include "common/fp.hpp"
 #include "contact/contact.hpp"
 #include "eval/f_adj.hpp"
 #include "eval/f_dd.hpp"
@@ -40,7 +41,6 @@
 namespace pw85 {
 
 namespace {
-constexpr double kU = 0x1p-53;
 // Fast path when the estimated relative error is below this.
 constexpr double kFastRel = 4e-15;
 // Rounding error of the stationary form (M11) relative to f: ~7u from its

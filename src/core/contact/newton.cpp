@@ -14,6 +14,7 @@
 //    (no further evaluation); or the step is below the rounding of lambda.
 #include <cmath>
 
+#include "common/fp.hpp"
 #include "contact/contact.hpp"
 #include "eval/f_ldl.hpp"
 #include "contact/newton.hpp"
@@ -21,7 +22,6 @@
 namespace pw85 {
 
 namespace {
-constexpr double kU = 0x1p-53;
 constexpr double kExtrapGap = 1e-6;
 constexpr double kExtrapBudget = 1e-16;
 constexpr int kMaxIter = 60;

@@ -16,6 +16,7 @@
 // which is decreasing (f is concave, hence log-concave), bracketed in [0, 1].
 #include <cmath>
 
+#include "common/fp.hpp"
 #include "contact/contact.hpp"
 #include "eval/f_cholesky.hpp"
 #include "contact/newton.hpp"
@@ -25,7 +26,6 @@ namespace pw85 {
 
 namespace {
 
-constexpr double kU = 0x1p-53;
 constexpr double kGapTol = 0x1p-56;
 constexpr int kMaxIter = 100;
 // Error of a coefficient <= kCoefErr * u * (sum of |terms|) (estimate).

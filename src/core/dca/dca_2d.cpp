@@ -46,6 +46,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/fp.hpp"
 #include "dca/dca.hpp"
 #include "common/magnitude.hpp"
 
@@ -53,7 +54,6 @@ namespace pw85 {
 
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr int kMaxPolish = 60;
 
 // Largest real root of the monic cubic y^3 + a y^2 + b y + c (one always

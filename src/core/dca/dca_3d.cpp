@@ -32,6 +32,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/fp.hpp"
 #include "dca/dca.hpp"
 #include "eval/f_cholesky.hpp"
 #include "common/magnitude.hpp"
@@ -41,7 +42,6 @@ namespace pw85 {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr int kSamples = 4;
 constexpr double kGolden = 0.3819660112501051;  // (3 - sqrt(5)) / 2
 constexpr int kLambdaNewton = 3;

@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "common/fp.hpp"
 #include "eval/f_derivatives.hpp"
 #include "common/isa.hpp"
 #include "common/sym3.hpp"
@@ -68,7 +69,6 @@ PW85_ALWAYS_INLINE bool f_eval_adj(double lambda, Vec3 const &r, Sym3 const &q1,
 // det and of the products adj r / det.
 PW85_ALWAYS_INLINE Vec3 adj_error(AdjEval const &e, Vec3 const &r, Sym3 const &q1,
                                   Sym3 const &q2) noexcept {
-  constexpr double u = 0x1p-53;
   Sym3 const &q = e.q;
   Sym3 qa;
   double const lm = 1.0 - e.lambda;
@@ -79,7 +79,7 @@ PW85_ALWAYS_INLINE Vec3 adj_error(AdjEval const &e, Vec3 const &r, Sym3 const &q
                  qa[1] * qa[2] + qa[0] * qa[4], qa[0] * qa[3] + qa[1] * qa[1]}};
   double const det_abs = qa[0] * aa[0] + qa[1] * aa[1] + qa[2] * aa[2];
   // 1/det from the evaluation (its rounding, 1u, is inside the factor 4).
-  double const k = 4.0 * u * e.inv_det;
+  double const k = 4.0 * kU * e.inv_det;
   double const rel_det = k * det_abs;
   Vec3 const ar{{std::fabs(r[0]), std::fabs(r[1]), std::fabs(r[2])}};
   Vec3 const t = multiply(aa, ar);

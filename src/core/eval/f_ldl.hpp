@@ -24,6 +24,7 @@
 
 #include <cmath>
 
+#include "common/fp.hpp"
 #include "eval/f_derivatives.hpp"
 #include "common/sym3.hpp"
 
@@ -91,7 +92,6 @@ inline bool f_eval(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
 // Estimate of the absolute error of the computed phi (eq. (M6)).
 inline double phi_error(FEval const &e, Vec3 const &r, Sym3 const &q1,
                         Sym3 const &q2) noexcept {
-  constexpr double u = 0x1p-53;
   Ldl const &l = e.l;
   double const a0 = std::fabs(e.s[0]), a1 = std::fabs(e.s[1]), a2 = std::fabs(e.s[2]);
   double const t0 = a0 + std::fabs(l.l10) * a1 + std::fabs(l.l20) * a2;
@@ -104,7 +104,7 @@ inline double phi_error(FEval const &e, Vec3 const &r, Sym3 const &q1,
   double const sq = qa[0] * a0 * a0 + qa[3] * a1 * a1 + qa[5] * a2 * a2 +
                     2.0 * (qa[1] * a0 * a1 + qa[2] * a0 * a2 + qa[4] * a1 * a2);
   double const rs = std::fabs(r[0]) * a0 + std::fabs(r[1]) * a1 + std::fabs(r[2]) * a2;
-  return u * (4.0 * b + 2.0 * sq + 3.0 * rs);
+  return kU * (4.0 * b + 2.0 * sq + 3.0 * rs);
 }
 
 }  // namespace pw85

@@ -19,6 +19,7 @@
 
 #include <cmath>
 
+#include "common/fp.hpp"
 #include "eval/f_derivatives.hpp"
 #include "common/isa.hpp"
 #include "common/sym3.hpp"
@@ -201,7 +202,6 @@ struct RatEval {
 
 PW85_ALWAYS_INLINE bool f_eval_rational(double lambda, RationalDD const &k,
                                         RatEval &e) noexcept {
-  constexpr double u = 0x1p-53;
   double const a0 = k.c[0], a1 = k.c[1], a2 = k.c[2];
   double const d0 = k.c[3], d1 = k.c[4], d2 = k.c[5], d3 = k.c[6];
   double const s = 1.0 - lambda, t = lambda;
@@ -235,7 +235,7 @@ PW85_ALWAYS_INLINE bool f_eval_rational(double lambda, RationalDD const &k,
   // absolute value, with their few roundings, and the error of phi.
   double const A1a = 2.0 * (a2 * t + a0 * s) + a1 * std::fabs(s - t);
   double const B1a = (std::fabs(e0) * ss + std::fabs(e2) * tt) + 2.0 * std::fabs(e1) * st;
-  e.edf = 16.0 * u * (std::fabs(p1) * phi + p * (A1a + phi * B1a) * ib);
+  e.edf = 16.0 * kU * (std::fabs(p1) * phi + p * (A1a + phi * B1a) * ib);
   // B >= 2^-150 keeps B^5 phi_4 (N4 and its terms) normal: for inputs
   // within the range of contact.hpp, phi >= |r|^2 / lambda_max(Q) > 2^-183
   // and the scaled B <= 8, so N_k = B^(k+1) phi_k cannot underflow into a

@@ -21,6 +21,7 @@
 //    (f_dd.hpp, contact_point_dd_impl).
 #include <cmath>
 
+#include "common/fp.hpp"
 #include "contact/contact.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "eval/f_dd.hpp"
@@ -29,7 +30,6 @@
 namespace pw85 {
 
 namespace {
-constexpr double kU = 0x1p-53;
 // Target relative accuracy of x0 and n (and of |f'(lambda)| / mu^2) on the
 // fast path; the slow path is taken when the estimate exceeds it.
 constexpr double kTol = 0x1p-43;  // 1.1e-13

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "common/fp.hpp"
 #include "common/isa.hpp"
 #include "common/magnitude.hpp"
 #include "overlap/overlap.hpp"
@@ -21,7 +22,6 @@ namespace pw85 {
 
 namespace {
 
-constexpr double kU = 0x1p-53;  // unit roundoff
 // Error bound of an expression of at most 16 rounded operations on any path
 // (docs/overlap.md, eq. (O3)): |fl(E) - E| <= kC * fl(|E|) + kAbs.
 constexpr double kC = 32 * kU;
@@ -577,12 +577,12 @@ Status overlap(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in, int &verd
     for (int i = 0; i < kSym; ++i) {
       q1[i] = q1_in[i] * sq;
       q2[i] = q2_in[i] * sq;
-      exact_scale = exact_scale && (q1[i] == 0.0 || std::fabs(q1[i]) >= 0x1p-1022) &&
-                    (q2[i] == 0.0 || std::fabs(q2[i]) >= 0x1p-1022);
+      exact_scale = exact_scale && (q1[i] == 0.0 || std::fabs(q1[i]) >= kMinNormal) &&
+                    (q2[i] == 0.0 || std::fabs(q2[i]) >= kMinNormal);
     }
     for (int i = 0; i < kDim; ++i) {
       r[i] = r_in[i] * sr;
-      exact_scale = exact_scale && (r[i] == 0.0 || std::fabs(r[i]) >= 0x1p-1022) &&
+      exact_scale = exact_scale && (r[i] == 0.0 || std::fabs(r[i]) >= kMinNormal) &&
                     std::isfinite(r[i]);
     }
     if (exact_scale && in_range(r, q1, q2)) {
