@@ -19,7 +19,7 @@
 #include <glib.h>
 
 #include "eval/f_rational_dd.hpp"
-#include "../src/tools/bench_common.hpp"
+#include "../bench/bench_common.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Benchmark of the distance of closest approach (issue 5, docs/dca.md).
+// Benchmark of the distance of closest approach (docs/dca.md).
 // NOT a test: built by meson, never run by `meson test`, not installed.
 //
 //   bench_dca [--n N] [--reps R] [--seed S] OUT.csv

@@ -1,4 +1,4 @@
-// Speed-accuracy benchmark of the contact-function methods (issue 7).
+// Speed-accuracy benchmark of the contact-function methods (docs/methods.md).
 // NOT a test: built by meson, never run by `meson test`, not installed.
 //
 //   bench_contact [--n N] [--reps R] [--seed S] [--dump K FILE] OUT.csv
@@ -19,7 +19,7 @@
 //  - prints a table and writes OUT.csv with a header recording the machine,
 //    the compiler and its flags.
 // --dump K FILE writes the first K pairs of every class with their reference
-// (for docs/check_bench_reference.py, which recomputes them with mpmath).
+// (for bench/check_bench_reference.py, which recomputes them with mpmath).
 //
 // To add a method to the chart: add one line to `methods` (a name, a
 // function with the signature of ContactFn, and its documented relative
@@ -84,7 +84,7 @@ MethodEntry const methods[] = {
     {"NEWTON", run_method<PW85_METHOD_NEWTON>, 1e-12},
     {"RATIONAL", run_method<PW85_METHOD_RATIONAL>, 1e-12},
     {"DEFAULT", run_method<PW85_METHOD_DEFAULT>, 1e-14},
-    {"ZHENG", run_method<PW85_METHOD_ZHENG>, 1e-9},  // documented in pw85.h (issue 5)
+    {"ZHENG", run_method<PW85_METHOD_ZHENG>, 1e-9},  // documented in pw85.h (docs/dca.md)
 };
 
 // ---- scenes ---------------------------------------------------------------

@@ -2,8 +2,7 @@
  * to 10^100, aspect ratios to 10^7, some with r12 = 0) through the five
  * methods of pw85_contact_function_method; counts statuses and non-finite
  * outputs (docs/stability.md).
- *   gcc -O2 -Iinclude docs/stability_fuzz_nan.c -Lbuild-fast/src -lpw85 \
- *       -Wl,-rpath,$PWD/build-fast/src -lm -o /tmp/fuzz_nan && /tmp/fuzz_nan 1 */
+ * Built by bench/meson.build:  build/bench/stability_fuzz_nan 1  (argument: seed) */
 #include <stdio.h>
 #include <stdlib.h>
 #include <math.h>

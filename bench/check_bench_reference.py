@@ -1,8 +1,8 @@
 #!/usr/bin/python3
-"""Checks the __float128 reference of src/tools/bench_contact against mpmath.
+"""Checks the __float128 reference of bench/bench_contact.cpp against mpmath.
 
     bench_contact --dump K dump.txt out.csv
-    /usr/bin/python3 docs/check_bench_reference.py dump.txt
+    /usr/bin/python3 bench/check_bench_reference.py dump.txt
 
 Each line of dump.txt: class, r12 (3), q1 (6), q2 (6) as %.17g (so the
 doubles are exact), and the __float128 reference mu2 with 36 digits. For each pair, mu2 is recomputed at 50

@@ -2,8 +2,7 @@
  * (docs/stability.md): magnitudes 10^-100 to 10^100, aspect ratios to 10^6;
  * reference: maximisation of f in __float128. Counts "silent" failures
  * (status PW85_OK with an error above the documented accuracy).
- *   gcc -O2 -Iinclude docs/stability_fuzz.c -Lbuild-fast/src -lpw85 \
- *       -Wl,-rpath,$PWD/build-fast/src -lm -o /tmp/fuzz && /tmp/fuzz 3 */
+ * Built by bench/meson.build:  build/bench/stability_fuzz 3  (argument: seed) */
 #include <stdio.h>
 #include <stdlib.h>
 #include <math.h>

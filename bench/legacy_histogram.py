@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Draw docs/legacy_histogram.png from the CSV written by the test legacy-f.
 
-usage: /usr/bin/python3 docs/legacy_histogram.py [CSV] [PNG]
+usage: /usr/bin/python3 bench/legacy_histogram.py [CSV] [PNG]
 
 CSV defaults to docs/legacy_histogram.csv (a copy of
 <builddir>/tests/legacy_histogram.csv, written by `meson test legacy-f`),
@@ -20,7 +20,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def main():
-    here = os.path.dirname(os.path.abspath(__file__))
+    here = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "docs")
     src = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "legacy_histogram.csv")
     dst = sys.argv[2] if len(sys.argv) > 2 else os.path.join(here, "legacy_histogram.png")
     with open(src) as f:

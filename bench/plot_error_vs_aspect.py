@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Error of mu^2 against the aspect ratio, one panel per method.
 
-    /usr/bin/python3 docs/plot_error_vs_aspect.py build-fast/src/libpw85.so
+    /usr/bin/python3 bench/plot_error_vs_aspect.py build/src/libpw85.so
 
 Pairs: two needles (semi-axes 1, 1/k, 1/k) or two discs (1, 1, 1/k), or a
 needle and a disc, with random orientations (seeded) and random centre
@@ -29,6 +29,7 @@ from mpmath import lu_solve, matrix, mp, mpf  # noqa: E402
 
 mp.dps = 50
 HERE = os.path.dirname(os.path.abspath(__file__))
+DOCS = os.path.join(HERE, os.pardir, "docs")
 METHODS = [("DEFAULT", 0, 1e-14), ("BRENT", 1, 1e-10), ("NEWTON", 2, 1e-12),
            ("RATIONAL", 3, 1e-12), ("ZHENG", 4, 1e-9)]
 FLOOR = 1e-18
@@ -106,7 +107,7 @@ def main():
                         continue
                     err = float(abs(mpf(res.mu2) - ref) / ref) if res.mu2 == res.mu2 else float("nan")
                     rows.append((name, s1 + "-" + s2, k, st, err, res.mu2_error / res.mu2))
-    with open(os.path.join(HERE, "error_vs_aspect.csv"), "w", newline="") as fh:
+    with open(os.path.join(DOCS, "error_vs_aspect.csv"), "w", newline="") as fh:
         w = csv.writer(fh)
         w.writerow(["method", "shapes", "aspect", "status", "rel_err", "rel_err_estimate"])
         w.writerows(rows)
@@ -131,7 +132,7 @@ def main():
     axes[0].set_ylabel("relative error of mu^2 (vs mpmath, 50 digits)")
     axes[-1].legend(fontsize=7, loc="upper left")
     fig.tight_layout()
-    out = os.path.join(HERE, "error_vs_aspect.png")
+    out = os.path.join(DOCS, "error_vs_aspect.png")
     fig.savefig(out, dpi=100)
     print("wrote", out, "and error_vs_aspect.csv,", len(rows), "rows")
 

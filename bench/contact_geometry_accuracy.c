@@ -1,9 +1,7 @@
 /* Measures the accuracy of pw85_contact against the exact contact geometry
- * (docs/contact_geometry.md, "Measured accuracy"). Not part of the build:
+ * (docs/contact_geometry.md, "Measured accuracy"). Built by bench/meson.build:
  *
- *   cc -O2 -std=gnu11 docs/contact_geometry_accuracy.c -Iinclude \
- *      $(pkg-config --cflags hdf5) -LBUILD/src -lpw85 -Wl,-rpath,$PWD/BUILD/src \
- *      -lhdf5_serial_hl -lhdf5_serial -lquadmath -lm -o /tmp/cga && /tmp/cga data/pw85_ref_data.h5
+ *   build/bench/contact_geometry_accuracy data/pw85_ref_data.h5
  *
  * Everything in __float128 from the double inputs: lambda* by six Newton
  * steps on f'(lambda) = (1-lambda)^2 s.Q1 s - lambda^2 s.Q2 s from the

@@ -72,7 +72,7 @@ inline void q_from_axes(double const a[3], double const rot[3][3], double q[6]) 
 
 // Centre offset of a random pair: uniformly random direction, length
 // reach 10^U(-2, -2 + span) with reach = a1max + a2max (the sum of the
-// largest semi-axes). bench_contact's scenes (issue 7) use span = kContactSpan
+// largest semi-axes). bench_contact's scenes use span = kContactSpan
 // (from deep overlap to 3.2 times reach); bench_overlap times those same pairs
 // and its older, wider scenes (span 3: up to 10 times reach).
 constexpr double kContactSpan = 2.5;

@@ -1,4 +1,5 @@
-// Benchmark of the exact overlap predicate pw85_overlap (issue 6).
+// Benchmark of the exact overlap predicate pw85_overlap (docs/overlap.md)
+// and of the batch calls (docs/batch.md).
 // NOT a test: built by meson, never run by `meson test`, not installed.
 //
 //   bench_overlap [--n N] [--reps R] [--seed S] [--ref FILE]
@@ -6,7 +7,7 @@
 //                 [--no-batch] [--overlap-only] OUT.csv
 //
 // Scenes (one row of the table per scene and function):
-//  - contact_scene/class0..3: the scenes of bench_contact (issue 7): N
+//  - contact_scene/class0..3: the scenes of bench_contact: N
 //    random general ellipsoid pairs per class (three distinct semi-axes
 //    log-uniform in [0.5, 2], [0.1, 10], [0.01, 100], [0.001, 1000];
 //    orientations uniform (random unit quaternions); centre distance
@@ -19,7 +20,7 @@
 //    (column n_checked).
 //  - gen/class0..3: as contact_scene but |r12| = (a1max + a2max) 10^U(-2, 1)
 //    (up to 10 times the sum of the largest semi-axes: more far-apart
-//    pairs), the generated scenes of the runs of earlier sessions (docs/overlap.md).
+//    pairs, which the plane test decides cheaply; docs/overlap.md).
 //  - ref/contact/class0..3 and ref/near_contact: the groups /contact (per
 //    class) and /near_contact (|mu2 - 1| log-uniform in [1e-15, 1e-2]) of the
 //    reference data file (default: PW85_REF_DATA_PATH, i.e.
@@ -174,10 +175,8 @@ void control_latency(long long items, int threads, volatile double &sink) {
 // thread, about 27 double operations per ns; cycle counts are not available
 // on this VM), so a second thread sharing the core (SMT) should gain little;
 // two cores double it.
-// (The first version kept 64 accumulators in an array on the stack; its
-// per-unit time depended on the thread's stack placement and its two-thread
-// speed-up ranged from 1.09 to 3.3: not a measure of the machine.
-// docs/batch.md.)
+// (Accumulators in registers, not in an array on the stack, whose per-unit
+// time would depend on the thread's stack placement.)
 void control_throughput(long long items, int threads, volatile double &sink) {
   typedef double V2 __attribute__((vector_size(16)));
   double part[2] = {0.0, 0.0};
@@ -221,7 +220,7 @@ double thread_ns() {
 // (as the batch's dynamic schedule does) and prefetch pair k + 16 (as the
 // batch does). Each thread also records its thread CPU time and pair
 // count, so a 2-thread pass shows whether both vCPUs ran this code at the
-// one-thread rate (docs/batch.md, "What the machine offers").
+// one-thread rate (docs/batch.md).
 struct PairsThreadStat {
   long long pairs = 0;
   double cpu_ns = 0.0;
@@ -471,10 +470,10 @@ int main(int argc, char **argv) {
     }
   };
   // contact_scene/classK: the pairs of bench_contact (same seed, generator
-  // and span: identical for the same --n), the scenes of issue 7.
+  // and span: identical for the same --n), the scenes of bench_contact.
   Rng g_contact{seed};
   generate(g_contact, "contact_scene/class", bench::kContactSpan, gen_skipped[1]);
-  // gen/classK: the wider scenes of earlier runs (up to 10 times a1max +
+  // gen/classK: the wider scenes (up to 10 times a1max +
   // a2max, hence more far-apart pairs); g then goes on to the batch scene.
   Rng g{seed};
   generate(g, "gen/class", 3.0, gen_skipped[0]);
@@ -612,7 +611,7 @@ int main(int argc, char **argv) {
     // timed in the same repetitions as its control_pairs and
     // control_throughput, passes interleaved in the order of the group, so
     // that a disturbance of the machine shows in the controls in the same
-    // repetition (docs/batch.md, "What the machine offers").
+    // repetition (docs/batch.md).
     std::vector<int> ov_control(batch_m);
     int const groups[4][3] = {{0, 5, 4}, {1, 6, 4}, {2, 7, 4}, {3, -1, -1}};
     for (auto const &group : groups) {

@@ -1,10 +1,8 @@
 /* ns per pw85_contact call per class of /contact: thread CPU time of a pass
  * over the 5000 pairs of the class, minimum over 7 passes
- * (docs/contact_geometry.md). Not part of the build:
+ * (docs/contact_geometry.md). Built by bench/meson.build:
  *
- *   cc -O2 -std=c11 docs/contact_geometry_timing.c -Iinclude $(pkg-config --cflags hdf5) \
- *      -LBUILD/src -lpw85 -Wl,-rpath,$PWD/BUILD/src -lhdf5_serial_hl -lhdf5_serial -lm \
- *      -o /tmp/cgt && /tmp/cgt data/pw85_ref_data.h5 */
+ *   build/bench/contact_geometry_timing data/pw85_ref_data.h5 */
 #define _POSIX_C_SOURCE 199309L
 #include <hdf5.h>
 #include <hdf5_hl.h>

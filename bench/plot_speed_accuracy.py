@@ -1,14 +1,13 @@
 #!/usr/bin/python3
 """Speed-accuracy chart of the contact-function methods.
 
-    /usr/bin/python3 docs/plot_speed_accuracy.py [docs/bench_contact.csv]
+    /usr/bin/python3 bench/plot_speed_accuracy.py [docs/bench_contact.csv]
 
-Reads the CSV written by src/tools/bench_contact and draws, for each class of
+Reads the CSV written by bench/bench_contact.cpp and draws, for each class of
 semi-axes (columns) and for the median and the maximum relative error of mu2
 (rows), the time per call against the error, one marker per method; the
 Pareto front (methods that no other method beats in both time and error) is
-drawn as a dashed staircase. Writes docs/speed_accuracy.png and .svg next to
-this script. Errors of exactly 0 are drawn at 1e-17.
+drawn as a dashed staircase. Writes docs/speed_accuracy.png and .svg. Errors of exactly 0 are drawn at 1e-17.
 """
 import csv
 import os
@@ -20,6 +19,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+DOCS = os.path.join(HERE, os.pardir, "docs")
 FLOOR = 1e-17
 MARKERS = ["o", "s", "^", "D", "v", "P", "X", "*", "h", "<", ">", "p"]
 
@@ -49,7 +49,7 @@ def pareto(points):
 
 
 def main():
-    path = sys.argv[1] if len(sys.argv) > 1 else os.path.join(HERE, "bench_contact.csv")
+    path = sys.argv[1] if len(sys.argv) > 1 else os.path.join(DOCS, "bench_contact.csv")
     rows, header = read(path)
     methods = []
     for r in rows:
@@ -91,8 +91,9 @@ def main():
                  fontsize=10)
     fig.tight_layout(rect=(0, 0.05, 1, 0.96))
     for ext in ("png", "svg"):
-        out = os.path.join(HERE, "speed_accuracy." + ext)
-        fig.savefig(out, dpi=110)
+        out = os.path.join(DOCS, "speed_accuracy." + ext)
+        # No date in the SVG metadata: the figure depends only on the CSV.
+        fig.savefig(out, dpi=110, metadata={"Date": None} if ext == "svg" else None)
         print("wrote", out)
 
 
