@@ -1,5 +1,5 @@
 // extern "C" layer of the distance-of-closest-approach functions
-// (include/pw85.h; core in src/core/dca_2d.cpp, contact_2d.cpp, dca_3d.cpp):
+// (include/pw85.h; core in src/core/dca/ and src/core/contact/contact_2d.cpp):
 // validate, normalise the direction, call the core, map to a status code.
 #include <cmath>
 
@@ -105,15 +105,9 @@ int pw85_dca(double const u[3], double const q1[6], double const q2[6], int meth
   *d = std::nan("");
   int const status = pw85::capi::validate_pair(u, q1, q2);
   if (status != PW85_OK) return status;
-  pw85::Vec3 un;
-  if (!normalise<3>(u, un.x)) return PW85_ERR_INVALID_ARGUMENT;
-  // d = 1 / sqrt(F(u)), F homogeneous of degree 2 in r12, F by the method
-  // of pw85_contact_function_method.
-  pw85::MethodResult res;
-  int const s = pw85::contact_method(method, un, pw85::load_sym3(q1), pw85::load_sym3(q2), res);
-  if (s == PW85_ERR_UNKNOWN_METHOD) return s;
-  *d = 1.0 / std::sqrt(res.mu2);
-  return s;
+  if (u[0] == 0.0 && u[1] == 0.0 && u[2] == 0.0) return PW85_ERR_INVALID_ARGUMENT;
+  return pw85::dca_by_contact_function(pw85::load_vec3(u), pw85::load_sym3(q1),
+                                       pw85::load_sym3(q2), method, *d);
 }
 
 int pw85_dca_ex(double const u[3], double const q1[6], double const q2[6], double theta_tol,

@@ -40,11 +40,11 @@ module pw85
   integer(c_int), parameter :: PW85_ERR_NOT_ORTHONORMAL = -4
   integer(c_int), parameter :: PW85_ERR_UNKNOWN_METHOD = -5
   integer(c_int), parameter :: PW85_ERR_INACCURATE = -6
-  ! Distance of closest approach (issue 5): PW85_DCA_THETA_TOL, PW85_DCA_MAX_EVAL.
+  ! Distance of closest approach : PW85_DCA_THETA_TOL, PW85_DCA_MAX_EVAL.
   real(c_double), parameter :: PW85_DCA_THETA_TOL = 1.0e-8_c_double
   integer(c_int), parameter :: PW85_DCA_MAX_EVAL = 100
 
-  ! Contact geometry (issue 6): mirror of struct pw85_contact_t of pw85.h
+  ! Contact geometry : mirror of struct pw85_contact_t of pw85.h
   ! (docs/contact_geometry.md). Fortran index k of x0 and n is C index k - 1.
   type, bind(c) :: pw85_contact_t
     real(c_double) :: mu2      ! contact function mu^2
@@ -56,7 +56,7 @@ module pw85
     real(c_double) :: depth_n  ! depth projected on the normal
   end type pw85_contact_t
 
-  ! Method-selecting contact function (issue 7, docs/methods.md): the
+  ! Method-selecting contact function (docs/methods.md): the
   ! PW85_METHOD_* values and the mirror of struct pw85_result of pw85.h.
   integer(c_int), parameter :: PW85_METHOD_DEFAULT = 0
   integer(c_int), parameter :: PW85_METHOD_BRENT = 1
@@ -153,7 +153,7 @@ module pw85
 
     ! -- interfaces added by later features go below --
 
-    ! ---- Method-selecting contact function (issue 7, docs/methods.md) ----
+    ! ---- Method-selecting contact function (docs/methods.md) ----
     ! int pw85_contact_function_method(double const r12[3], double const q1[6],
     !     double const q2[6], int method, pw85_result *res)
     function pw85_contact_function_method(r12, q1, q2, method, res) &
@@ -165,7 +165,7 @@ module pw85
       integer(c_int) :: status
     end function pw85_contact_function_method
 
-    ! ---- Overlap, contact geometry and batch calls (issue 6, docs/overlap.md,
+    ! ---- Overlap, contact geometry and batch calls (docs/overlap.md,
     ! docs/contact_geometry.md, docs/batch.md) ----
     ! int pw85_overlap(double const r12[3], double const q1[6], double const q2[6])
     ! Returns 1 (overlap), 0 (no overlap) or a negative status.
@@ -231,7 +231,7 @@ module pw85
       integer(c_int) :: res
     end function pw85_contact_batch
 
-    ! ---- Distance of closest approach (issue 5, docs/dca.md) ----
+    ! ---- Distance of closest approach (docs/dca.md) ----
     ! int pw85_dca_2d(double const u[2], double const q1[3],
     !                 double const q2[3], double *d)
     ! 2D ellipses: q = (Q11, Q12, Q22); u need not be a unit vector.

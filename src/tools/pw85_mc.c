@@ -1,5 +1,5 @@
 /* pw85_mc: a scene of hard spheroids, the demonstration of the scene API of
- * libpw85 (issue 6; README "A scene").
+ * libpw85 (README "A scene").
  *
  *   pw85_mc [--n N] [--sweeps S] [--seed SEED] [--aspect C_OVER_A]
  *           [--phi PACKING_FRACTION] [--threads T]

@@ -89,8 +89,7 @@ inline bool has_v4() noexcept { return __builtin_cpu_supports("x86-64-v4"); }
 // one branch instead of being split into one branch per comparison, and
 // code whose result passes through it is not sunk into the branch that
 // uses it. For the unpredictable branches of the overlap filters and of
-// DEFAULT's acceptance tests (docs/overlap.md and docs/methods.md,
-// "Branches"). No effect on the value.
+// DEFAULT's acceptance tests. No effect on the value.
 template <class T>
 PW85_ALWAYS_INLINE void opaque(T &x) noexcept {
   static_assert(std::is_integral<T>::value, "opaque: a general-purpose register value");

@@ -320,7 +320,7 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
 // the coefficients, about 13 u from the evaluation of A / B and s t.
 constexpr double kRationalRel = 16.0 * kU;
 
-// The rational step (docs/methods.md, "DEFAULT on x86-64-v4"): from the
+// The rational step (docs/methods.md, "PW85_METHOD_DEFAULT"): from the
 // start (M24) (or (M22) where (M24) finds no bracket), Halley steps (M8)
 // on f evaluated from the seven
 // double-double coefficients (f_rational_dd.hpp), whose error does not grow

@@ -82,4 +82,15 @@ constexpr double kZhengRelAccuracy = 1e-9;
 Status contact_zheng_method(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                             MethodResult &res) noexcept;
 
+// Distance of closest approach through a contact-function method (any
+// method of pw85_contact_function_method): since F is homogeneous of degree
+// 2 in r12, d(u) = |u| / sqrt(F(u)) for any u != 0 (docs/dca.md).
+// u is scaled by a power of two (exact) to max |u_i| in [0.5, 1), then |u|
+// and F are computed from the scaled u itself: normalising u first would
+// round its components, an error that F amplifies by the conditioning of
+// the pair. Preconditions as contact_method, u != 0. Returns as
+// contact_method; d is written unless the status is kUnknownMethod.
+Status dca_by_contact_function(Vec3 const &u, Sym3 const &q1, Sym3 const &q2, int method,
+                               double &d) noexcept;
+
 }  // namespace pw85

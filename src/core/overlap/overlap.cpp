@@ -325,7 +325,7 @@ int filters_slow(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, double l, int &s
   double const rdr = rr[0][0] + rr[1][0] + rr[2][0];
   double const d = (rdr * rdr) * (1.0 - 16 * kU) - (A1 + A2) * (1.0 + 16 * kU);
   // One branch on the combined test (opaque: GCC would otherwise branch on
-  // each comparison; docs/overlap.md, "Branches").
+  // each comparison; docs/overlap.md).
   bool plane = (d > 0.0) & ((d * d) * (1.0 - 16 * kU) >= (4.0 * (A1 * A2)) * (1.0 + 16 * kU) + 0x1p-1000);
   opaque(plane);
   if (plane) {
@@ -344,7 +344,7 @@ int filters_slow(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, double l, int &s
   // tests whether either decided: in the scenes of the benchmark (O13)
   // decides 82 and 55 % of the pairs past the plane in classes 1 and 2, a
   // branch on it alone is often mispredicted, and a mispredicted
-  // branch costs more than (O18) (docs/overlap.md, "Branches"). opaque()
+  // branch costs more than (O18) (docs/overlap.md). opaque()
   // keeps GCC from sinking (O18) into a branch on (O13).
   bool const o13 = (x[0][0] > err(x[0])) & (x[1][0] > err(x[1])) & (x[2][0] > err(x[2])) &
                    (x[3][0] > err(x[3])) & (x[4][0] > err(x[4]));
@@ -625,7 +625,7 @@ namespace {
 #if PW85_ISA_LEVELS
 // The same code compiled for the x86-64 levels v4 (AVX-512: 32 vector
 // registers, fewer spills of the bounded values) and v3 (AVX2), chosen at
-// run time (docs/overlap.md, "Instruction sets"). This file is built with
+// run time (docs/overlap.md, "Instruction sets and reproducibility"). This file is built with
 // GCC's default contraction (src/meson.build), so the v3 and v4 variants
 // fuse some a * b + c into FMAs; every bound of the filters holds for a
 // fused operation too (the product's rounding error is then 0), so the

@@ -1,0 +1,26 @@
+// Distance of closest approach through a contact-function method
+// (dca.hpp): d(u) = |u| / sqrt(F(u)).
+#include <cmath>
+
+#include "common/magnitude.hpp"
+#include "contact/contact.hpp"
+#include "dca/dca.hpp"
+
+namespace pw85 {
+
+Status dca_by_contact_function(Vec3 const &u, Sym3 const &q1, Sym3 const &q2, int method,
+                               double &d) noexcept {
+  // max |u_i| in [0.5, 1): |u| in [0.5, sqrt(3)), no overflow or underflow
+  // of u^T u, and F(u) = |u|^2 / d^2 as representable as 1 / d^2.
+  int const e = max_exponent(u.x, kDim);
+  Vec3 v;
+  for (int i = 0; i < kDim; ++i) v[i] = std::ldexp(u[i], -e);
+  MethodResult res;
+  Status const s = contact_method(method, v, q1, q2, res);
+  if (s == kUnknownMethod) return s;
+  double const norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  d = norm / std::sqrt(res.mu2);
+  return s;
+}
+
+}  // namespace pw85
