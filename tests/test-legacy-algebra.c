@@ -6,7 +6,8 @@
 
 #include <glib.h>
 
-#include "legacy_testutil.h"
+#include "refdata.h"
+#include "testutil.h"
 #include "pw85_legacy.h"
 
 #define NUM_RANDOM 2000
@@ -57,7 +58,7 @@ static void test_det_sym_random(void) {
     __float128 aq[6];
     to_q(a, 6, aq);
     double const exp = (double)q_det_sym(aq);
-    double const err = legacy_rel_error(pw85_legacy__det_sym(a), exp);
+    double const err = rel_error(pw85_legacy__det_sym(a), exp);
     if (err > max_err) max_err = err;
     g_assert_cmpfloat(err, <=, 1e-12);
   }
@@ -103,7 +104,7 @@ static void test_xT_adjA_x_random(void) {
     to_q(a, 6, aq);
     to_q(x, 3, xq);
     double const exp = (double)q_xT_adjA_x(xq, aq);
-    double const err = legacy_rel_error(pw85_legacy__xT_adjA_x(x, a), exp);
+    double const err = rel_error(pw85_legacy__xT_adjA_x(x, a), exp);
     if (err > max_err) max_err = err;
     /* adj(A) is positive definite with cond <= 100: no cancellation. */
     g_assert_cmpfloat(err, <=, 1e-12);
@@ -168,14 +169,17 @@ typedef struct {
 } RefGrid;
 
 static gboolean read_grid(RefGrid *g) {
-  hid_t const file = legacy_open_ref_data();
-  if (file < 0) return FALSE;
-  g->spheroids = legacy_read_double(file, "/spheroids", &g->ns);
-  g->directions = legacy_read_double(file, "/directions", &g->nd);
-  g->lambdas = legacy_read_double(file, "/lambdas", &g->nl);
+  hid_t file;
+  if (!refdata_open_or_skip(&file)) return FALSE;
+  g->spheroids = refdata_read_double_all(file, "/spheroids", &g->ns);
+  g_assert_nonnull(g->spheroids);
+  g->directions = refdata_read_double_all(file, "/directions", &g->nd);
+  g_assert_nonnull(g->directions);
+  g->lambdas = refdata_read_double_all(file, "/lambdas", &g->nl);
+  g_assert_nonnull(g->lambdas);
   g->ns /= 6;
   g->nd /= 3;
-  H5Fclose(file);
+  refdata_close(file);
   g_assert_cmpuint(g->nl, ==, 11);
   return TRUE;
 }
@@ -195,7 +199,7 @@ typedef struct {
 } PolyErr;
 
 static void poly_err_add(PolyErr *e, double act, double exp, double mag) {
-  double const rel = legacy_rel_error(act, exp);
+  double const rel = rel_error(act, exp);
   double const scaled = fabs(act - exp) / (DBL_EPSILON * mag);
   if (rel > e->max_rel) e->max_rel = rel;
   if (scaled > e->max_scaled) e->max_scaled = scaled;
@@ -284,12 +288,12 @@ static void test_rT_adjQ_r_as_poly_reference(void) {
 
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
-  g_test_add_func("/legacy/det_sym/random_spd", test_det_sym_random);
-  g_test_add_func("/legacy/det_sym/general", test_det_sym_general);
-  g_test_add_func("/legacy/xT_adjA_x/random_spd", test_xT_adjA_x_random);
-  g_test_add_func("/legacy/helpers/bad_input", test_helpers_bad_input);
-  g_test_add_func("/legacy/detQ_as_poly/reference_spheroids", test_detQ_as_poly_reference);
-  g_test_add_func("/legacy/rT_adjQ_r_as_poly/reference_spheroids",
+  g_test_add_func("/pw85_legacy__det_sym/random_spd", test_det_sym_random);
+  g_test_add_func("/pw85_legacy__det_sym/general", test_det_sym_general);
+  g_test_add_func("/pw85_legacy__xT_adjA_x/random_spd", test_xT_adjA_x_random);
+  g_test_add_func("/pw85_legacy__helpers/bad_input", test_helpers_bad_input);
+  g_test_add_func("/pw85_legacy__detQ_as_poly/reference/spheroids", test_detQ_as_poly_reference);
+  g_test_add_func("/pw85_legacy__rT_adjQ_r_as_poly/reference/spheroids",
                   test_rT_adjQ_r_as_poly_reference);
   return g_test_run();
 }

@@ -109,10 +109,10 @@ static void test_cholesky_solve_exact(void) {
 
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
-  g_test_add_func("/cholesky_decomp/exact", test_cholesky_decomp_exact);
-  g_test_add_func("/cholesky_decomp/random", test_cholesky_decomp_random);
-  g_test_add_func("/cholesky_decomp/not_spd", test_cholesky_decomp_not_spd);
-  g_test_add_func("/cholesky_solve/exact", test_cholesky_solve_exact);
-  g_test_add_func("/cholesky_solve/random", test_cholesky_solve_random);
+  g_test_add_func("/pw85__cholesky_decomp/exact", test_cholesky_decomp_exact);
+  g_test_add_func("/pw85__cholesky_decomp/random", test_cholesky_decomp_random);
+  g_test_add_func("/pw85__cholesky_decomp/not_spd", test_cholesky_decomp_not_spd);
+  g_test_add_func("/pw85__cholesky_solve/exact", test_cholesky_solve_exact);
+  g_test_add_func("/pw85__cholesky_solve/random", test_cholesky_solve_random);
   return g_test_run();
 }

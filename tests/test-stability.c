@@ -1,4 +1,6 @@
-/* Stability of pw85_contact_function_method where methods fail (issue 7).
+/* pw85_contact_function_method: every method where methods fail (the
+ * measurements of docs/stability.md), ZHENG against the reference data, and
+ * bad input.
  *
  * For every method: aspect ratios 1 to 1e6 (needles and discs), near
  * tangency (|mu^2 - 1| down to 1e-15), coincident centres, identical
@@ -27,6 +29,7 @@
 #include <glib.h>
 
 #include "pw85.h"
+#include "refdata.h"
 #include "testutil.h"
 
 #ifdef __SIZEOF_FLOAT128__
@@ -523,6 +526,62 @@ static void test_brent_is_legacy(void) {
   g_rand_free(rng);
 }
 
+/* ---- ZHENG against the reference data ------------------------------------ */
+
+/* pw85_contact_function_method with PW85_METHOD_ZHENG: mu2 = |r12|^2 / d^2,
+ * lambda recovered from the optimal plane and polished (docs/dca.md). Up to
+ * pair aspect 100: PW85_OK, mu2 to 1e-9 (documented), lambda to 1e-12;
+ * beyond: PW85_OK only when the error estimate is within 1e-9 mu2, checked
+ * to hold up to aspect 1e3 (measured beyond: printed). */
+static void check_method_zheng(const char *group) {
+  RefPairs *g = refdata_pairs_or_skip(group);
+  if (g == NULL) return;
+  g_assert_nonnull(g->radii1);
+  g_assert_nonnull(g->radii2);
+  double worst_mu2 = 0.0, worst_lambda = 0.0;
+  int n_inaccurate = 0, n_ok_wrong = 0, n_high = 0;
+  for (gsize i = 0; i < g->n; i++) {
+    const double *r = g->r12 + 3 * i;
+    pw85_result res;
+    int status = pw85_contact_function_method(r, g->q1 + 6 * i, g->q2 + 6 * i,
+                                              PW85_METHOD_ZHENG, &res);
+    if (r[0] == 0.0 && r[1] == 0.0 && r[2] == 0.0) {
+      g_assert_cmpint(status, ==, PW85_OK);
+      g_assert_cmpfloat(res.mu2, ==, 0.0);
+      continue;
+    }
+    double aspect = refdata_pair_aspect(g, i), e = rel_error(res.mu2, g->mu2[i]);
+    double el = fabs(res.lambda - g->lambda[i]);
+    g_assert_true(status == PW85_OK || status == PW85_ERR_INACCURATE);
+    g_assert_cmpint(res.method, ==, PW85_METHOD_ZHENG);
+    g_assert_cmpint(res.iterations, >, 0);
+    g_assert_cmpint(res.iterations, <=, PW85_DCA_MAX_EVAL);
+    if (aspect <= 100.0) {
+      g_assert_cmpint(status, ==, PW85_OK);
+      g_assert_cmpfloat(e, <=, 1e-9);
+      g_assert_cmpfloat(el, <=, 1e-12);
+      worst_mu2 = fmax(worst_mu2, e);
+      worst_lambda = fmax(worst_lambda, el);
+    } else {
+      n_high++;
+      if (status == PW85_ERR_INACCURATE) n_inaccurate++;
+      if (status == PW85_OK && e > 1e-9) {
+        n_ok_wrong++;
+        g_assert_cmpfloat(aspect, >, 1e3);
+      }
+    }
+  }
+  g_test_message("%s, contact_function_method(ZHENG), pair aspect <= 100: max rel. error "
+                 "of mu2 %.3g, max |lambda error| %.3g; aspect > 100: %d pairs, %d "
+                 "PW85_ERR_INACCURATE, %d PW85_OK with error > 1e-9",
+                 group, worst_mu2, worst_lambda, n_high, n_inaccurate, n_ok_wrong);
+  refdata_pairs_free(g);
+}
+
+static void test_method_zheng_contact(void) { check_method_zheng("/contact"); }
+static void test_method_zheng_special(void) { check_method_zheng("/special"); }
+
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   static const struct {
@@ -537,13 +596,17 @@ int main(int argc, char **argv) {
   };
   for (size_t i = 0; i < N_METHODS; ++i)
     for (size_t j = 0; j < sizeof cases / sizeof cases[0]; ++j) {
-      char *path = g_strdup_printf("/contact_function_method/%s/%s", methods[i].name,
+      char *path = g_strdup_printf("/pw85_contact_function_method/%s/%s", methods[i].name,
                                    cases[j].name);
       g_test_add_data_func(path, &methods[i], cases[j].fn);
       g_free(path);
     }
-  g_test_add_func("/contact_function_method/errors", test_errors);
-  g_test_add_func("/contact_function_method/brent/same_as_pw85_contact_function",
+  g_test_add_func("/pw85_contact_function_method/zheng/reference/contact",
+                  test_method_zheng_contact);
+  g_test_add_func("/pw85_contact_function_method/zheng/reference/special",
+                  test_method_zheng_special);
+  g_test_add_func("/pw85_contact_function_method/bad_input", test_errors);
+  g_test_add_func("/pw85_contact_function_method/brent/same_as_pw85_contact_function",
                   test_brent_is_legacy);
   return g_test_run();
 }
