@@ -400,12 +400,11 @@ typedef struct {
   gsize max_noconv, max_above_ok;
 } Bound;
 
-/* Measured (after the final evaluation of mu^2 in the stationary form with
+/* Measured (the final evaluation of mu^2 is the stationary form with
  * compensated sums, src/core/brent.cpp): max 0, 0, 0, 2.6e-11 (all rows;
  * the reference is correctly rounded and the result usually is too);
  * PW85_ERR_NO_CONVERGENCE 0, 0, 0, 87; PW85_OK beyond 1e-10: 0 in every
- * class. Before that change (f in double through Cholesky, as pw85 1.0):
- * 7.6e-16, 1.1e-13, 3.9e-10, 4.4e-6. */
+ * class. */
 static const Bound contact_bounds[4] = {
     {"class 0", 1e-15, 1e-15, 0, 0},
     {"class 1", 1e-15, 1e-15, 0, 0},

@@ -1,4 +1,4 @@
-/* Tests of pw85_contact (issue 6; docs/contact_geometry.md): the contact
+/* Tests of pw85_contact (docs/contact_geometry.md): the contact
  * point lies on both ellipsoids scaled by mu and their outward normals there
  * are opposite; mu2 agrees with the exact-arithmetic reference and with
  * pw85_contact_function; dca = |r12| / mu; depth vanishes at tangency and
@@ -96,7 +96,7 @@ static void exact_geometry(const double r[3], const double q1[6], const double q
  *           surfaces through the double x0 (the rounding of x0 tilts the
  *           normal of a needle-like ellipsoid: ~2e-6 in class 3; n itself
  *           is within the n bound of the exact normal).
- * x0, n, lambda and surf are within ~1 ulp: the issue's 1e-12 holds in
+ * x0, n, lambda and surf are within ~1 ulp: the target 1e-12 holds in
  * every class; pt and opp are limited by the rounding of x0 to double.
  * x0 and n get 2 ulps (4.5e-16): the kernels without FMA (Dekker products,
  * no contraction) differ from the FMA ones by up to 1 ulp. pt in class 1

@@ -1,4 +1,4 @@
-/* Tests of pw85_overlap (issue 6): verdicts against the high-precision
+/* Tests of pw85_overlap: verdicts against the high-precision
  * reference data (mu2 computed in exact rational arithmetic from the stored
  * doubles), exact tangency constructed with exactly representable contact,
  * bad input. */
