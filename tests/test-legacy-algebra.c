@@ -12,36 +12,6 @@
 
 #define NUM_RANDOM 2000
 
-/* Random symmetric positive definite matrix R diag(e) R^T, eigenvalues
- * log-uniform in [1/sqrt(cond), sqrt(cond)], R a random rotation (from a
- * random unit quaternion). */
-static void random_spd(GRand *rng, double cond, double a[6]) {
-  double qv[4], n = 0.0;
-  do {
-    n = 0.0;
-    for (int i = 0; i < 4; ++i) {
-      qv[i] = g_rand_double_range(rng, -1.0, 1.0);
-      n += qv[i] * qv[i];
-    }
-  } while (n > 1.0 || n < 1e-3);
-  n = sqrt(n);
-  double const w = qv[0] / n, x = qv[1] / n, y = qv[2] / n, z = qv[3] / n;
-  double const rot[3][3] = {
-      {1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
-      {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
-      {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
-  double e[3];
-  double const h = 0.5 * log(cond);
-  for (int i = 0; i < 3; ++i) e[i] = exp(g_rand_double_range(rng, -h, h));
-  int const idx[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
-  for (int k = 0; k < 6; ++k) {
-    __float128 s = 0;
-    for (int m = 0; m < 3; ++m)
-      s += (__float128)rot[idx[k][0]][m] * e[m] * rot[idx[k][1]][m];
-    a[k] = (double)s;
-  }
-}
-
 static void to_q(const double *x, int n, __float128 *y) {
   for (int i = 0; i < n; ++i) y[i] = x[i];
 }

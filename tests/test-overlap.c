@@ -41,11 +41,6 @@ static void test_reference_near_contact(void) { check_group("/near_contact", 0.0
 static void test_reference_contact(void) { check_group("/contact", 0.0); }
 static void test_reference_special(void) { check_group("/special", 0.0); }
 
-static void sphere_q(double a, double q[6]) {
-  q[0] = q[3] = q[5] = a * a;
-  q[1] = q[2] = q[4] = 0.0;
-}
-
 /* Spheres of radii 1.5 and 1, centres at distance exactly 2.5 along
  * (3/5, 4/5, 0): r12 = (1.5, 2, 0). Tangent: 0; one ulp closer: 1. */
 static void test_tangent_spheres(void) {

@@ -53,6 +53,19 @@ void make_q(const double radii[3], const double axes[9], double q[6]) {
     }
 }
 
+void random_spd(GRand *rng, double cond, double a[6]) {
+  double radii[3], axes[9];
+  double const h = 0.25 * log(cond); /* radii^2 in [cond^-1/2, cond^1/2] */
+  for (int i = 0; i < 3; i++) radii[i] = exp(g_rand_double_range(rng, -h, h));
+  random_axes(rng, axes);
+  make_q(radii, axes, a);
+}
+
+void sphere_q(double a, double q[6]) {
+  q[0] = q[3] = q[5] = a * a;
+  q[1] = q[2] = q[4] = 0.0;
+}
+
 /* Determinants and adjugates use __float128 (113-bit significand): the
  * products of three doubles then carry almost no rounding, so the
  * references stay accurate for condition numbers up to ~1e12. */

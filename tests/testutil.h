@@ -27,6 +27,13 @@ void random_radii(GRand *rng, double lo, double hi, double radii[3]);
 /* Q = sum_k radii[k]^2 v_k v_k^T computed in long double, rounded. */
 void make_q(const double radii[3], const double axes[9], double q[6]);
 
+/* A random symmetric positive definite matrix R diag(e) R^T: eigenvalues e
+ * log-uniform in [1/sqrt(cond), sqrt(cond)], R = random_axes(). */
+void random_spd(GRand *rng, double cond, double a[6]);
+
+/* The sphere of radius a: Q = a^2 I. */
+void sphere_q(double a, double q[6]);
+
 /* Independent evaluations in long double through the adjugate:
  * f(lambda) = lambda (1 - lambda) r^T adj(Q) r / det(Q). */
 long double f_ld(long double lambda, const double r[3], const double q1[6],
