@@ -1,6 +1,7 @@
 #include "refdata.h"
 
 #include <hdf5_hl.h>
+#include <math.h>
 #include <string.h>
 
 #include "testutil.h"
@@ -105,6 +106,33 @@ int *refdata_read_int(hid_t file, const char *name, int rank, hsize_t *dims) {
   return read_as(file, name, rank, dims, H5T_NATIVE_INT, sizeof(int));
 }
 
+/* Every element of a dataset of rank 1..4. */
+static void *read_all_as(hid_t file, const char *name, gsize *count, hid_t type,
+                         size_t size) {
+  int ndims = -1;
+  *count = 0;
+  if (H5LTget_dataset_ndims(file, name, &ndims) < 0) {
+    g_test_message("refdata: cannot read the rank of %s", name);
+    return NULL;
+  }
+  hsize_t dims[4];
+  void *buf = read_as(file, name, ndims, dims, type, size);
+  if (buf != NULL) {
+    gsize n = 1;
+    for (int i = 0; i < ndims; i++) n *= dims[i];
+    *count = n;
+  }
+  return buf;
+}
+
+double *refdata_read_double_all(hid_t file, const char *name, gsize *count) {
+  return read_all_as(file, name, count, H5T_NATIVE_DOUBLE, sizeof(double));
+}
+
+int *refdata_read_int_all(hid_t file, const char *name, gsize *count) {
+  return read_all_as(file, name, count, H5T_NATIVE_INT, sizeof(int));
+}
+
 /* TRUE if group/name exists (the group itself may be missing: expected
  * failure, printing silenced). */
 static gboolean has_dataset(hid_t file, const char *path) {
@@ -148,14 +176,16 @@ RefPairs *refdata_pairs_read(hid_t file, const char *group) {
   p->q2 = read_member(file, group, "q2", FALSE, &p->n, 6, &ok);
   p->lambda = read_member(file, group, "lambda", FALSE, &p->n, 0, &ok);
   p->cls = read_member(file, group, "class", TRUE, &p->n, 0, &ok);
-  static const char *const optional[] = {"kind", "mu2_target", "eps_target", "side_target"};
-  void **dest[] = {(void **)&p->kind, (void **)&p->mu2_target, (void **)&p->eps_target,
-                   (void **)&p->side_target};
+  static const char *const optional[] = {"kind",        "mu2_target", "eps_target",
+                                          "side_target", "radii1",     "radii2"};
+  static const int columns[] = {0, 0, 0, 0, 3, 3};
+  void **dest[] = {(void **)&p->kind,        (void **)&p->mu2_target, (void **)&p->eps_target,
+                   (void **)&p->side_target, (void **)&p->radii1,     (void **)&p->radii2};
   for (size_t i = 0; i < G_N_ELEMENTS(optional); i++) {
     char *path = g_strdup_printf("%s/%s", group, optional[i]);
     if (has_dataset(file, path)) {
       gboolean const is_int = optional[i][0] == 'k' || optional[i][0] == 's';
-      *dest[i] = read_member(file, group, optional[i], is_int, &p->n, 0, &ok);
+      *dest[i] = read_member(file, group, optional[i], is_int, &p->n, columns[i], &ok);
     }
     g_free(path);
   }
@@ -179,7 +209,29 @@ void refdata_pairs_free(RefPairs *p) {
   g_free(p->mu2_target);
   g_free(p->eps_target);
   g_free(p->side_target);
+  g_free(p->radii1);
+  g_free(p->radii2);
   g_free(p);
+}
+
+RefPairs *refdata_pairs_or_skip(const char *group) {
+  hid_t file;
+  if (!refdata_open_or_skip(&file)) return NULL;
+  RefPairs *p = refdata_pairs_read(file, group);
+  refdata_close(file);
+  g_assert_nonnull(p);
+  return p;
+}
+
+double refdata_pair_aspect(const RefPairs *p, gsize i) {
+  g_assert_nonnull(p->radii1);
+  g_assert_nonnull(p->radii2);
+  double lo = INFINITY, hi = 0.0;
+  for (int k = 0; k < 3; k++) {
+    lo = fmin(lo, fmin(p->radii1[3 * i + k], p->radii2[3 * i + k]));
+    hi = fmax(hi, fmax(p->radii1[3 * i + k], p->radii2[3 * i + k]));
+  }
+  return hi / lo;
 }
 
 char *refdata_read_string_attribute(hid_t file, const char *obj, const char *attr) {

@@ -1,5 +1,8 @@
 /* Reading the reference data file data/pw85_ref_data.h5 (layout: data/README.md)
- * from the GLib test programs, with the HDF5 high-level API (H5LT).
+ * from the GLib test programs, with the HDF5 high-level API (H5LT). Every
+ * test program that reads the file goes through these functions, so that
+ * the path ($PW85_REF_DATA or the build-time path, ref_data_path() of
+ * testutil.h) and the skip when the file is absent are the same everywhere.
  *
  * Typical use in a test function:
  *
@@ -40,6 +43,11 @@ void refdata_close(hid_t file);
 double *refdata_read_double(hid_t file, const char *name, int rank, hsize_t *dims);
 int *refdata_read_int(hid_t file, const char *name, int rank, hsize_t *dims);
 
+/* The same for a dataset of any rank (1..4); *count receives the number of
+ * elements. NULL on error. */
+double *refdata_read_double_all(hid_t file, const char *name, gsize *count);
+int *refdata_read_int_all(hid_t file, const char *name, gsize *count);
+
 /* Rows of one of the groups /contact, /near_contact, /special. Optional
  * datasets that the group does not have are NULL. */
 typedef struct {
@@ -54,6 +62,8 @@ typedef struct {
   double *mu2_target;  /* n, /special only */
   double *eps_target;  /* n, /near_contact only */
   int *side_target;    /* n, /near_contact only (-1: mu^2 < 1, +1: > 1) */
+  double *radii1;      /* n x 3, semi-axes of ellipsoid 1 (when stored) */
+  double *radii2;      /* n x 3, semi-axes of ellipsoid 2 (when stored) */
 } RefPairs;
 
 /* Reads the mandatory datasets r12, q1, q2, mu2, lambda, class of `group`
@@ -61,6 +71,15 @@ typedef struct {
  * NULL on error. */
 RefPairs *refdata_pairs_read(hid_t file, const char *group);
 void refdata_pairs_free(RefPairs *p);
+
+/* Opens the file, reads `group` and closes the file. Returns NULL after
+ * g_test_skip() when the file is absent (refdata_open_or_skip); a file that
+ * is present but cannot be read fails the test. */
+RefPairs *refdata_pairs_or_skip(const char *group);
+
+/* Largest over smallest of the six semi-axes of row i (radii1, radii2 must
+ * be stored). */
+double refdata_pair_aspect(const RefPairs *p, gsize i);
 
 /* Reads the string attribute `attr` of the object `obj` (fixed-length or
  * variable-length string). Returns a newly allocated, NUL-terminated string

@@ -1,4 +1,4 @@
-/* Tests of the batch calls (issue 6, docs/batch.md): results identical
+/* Tests of the batch calls (docs/batch.md): results identical
  * (bitwise) to the one-pair functions, independent of the number of threads
  * (1 and 2, explicit nthreads argument), per-pair status, bad input. */
 #include <math.h>
@@ -103,12 +103,16 @@ static void test_contact_batch(void) {
   }
 }
 
-static void test_bad_input(void) {
+/* Out-of-range pair indices: the per-pair status says which pairs failed
+ * and the call returns the first failure. */
+static const long long bad_pairs[8] = {0, 1, 2, N, 3, 4, -1, 0};
+
+static void test_overlap_batch_bad_input(void) {
   static scene s;
   make_scene(&s, 14);
   int v[4], st[4];
-  long long pairs[8] = {0, 1, 2, N, 3, 4, -1, 0};
-  /* out-of-range indices: per-pair status, first failing pair returned */
+  long long pairs[8];
+  memcpy(pairs, bad_pairs, sizeof pairs);
   g_assert_cmpint(pw85_overlap_batch(N, s.c, s.q, 4, pairs, v, st, 0), ==,
                   PW85_ERR_INVALID_ARGUMENT);
   g_assert_cmpint(st[0], ==, PW85_OK);
@@ -116,14 +120,6 @@ static void test_bad_input(void) {
   g_assert_cmpint(v[1], ==, PW85_ERR_INVALID_ARGUMENT);
   g_assert_cmpint(st[2], ==, PW85_OK);
   g_assert_cmpint(st[3], ==, PW85_ERR_INVALID_ARGUMENT);
-  double out[8];
-  g_assert_cmpint(pw85_contact_function_batch(N, s.c, s.q, 4, pairs, out, st, 0), ==,
-                  PW85_ERR_INVALID_ARGUMENT);
-  g_assert_true(isnan(out[2]) && isnan(out[3]) && !isnan(out[0]));
-  pw85_contact_t c[4];
-  g_assert_cmpint(pw85_contact_batch(N, s.c, s.q, 4, pairs, c, st, 0), ==,
-                  PW85_ERR_INVALID_ARGUMENT);
-  g_assert_true(isnan(c[3].depth) && !isnan(c[2].depth));
   /* a non-positive-definite matrix in the scene */
   s.q[6 * 4 + 0] = -1.0;
   g_assert_cmpint(pw85_overlap_batch(N, s.c, s.q, 1, pairs + 4, v, st, 1), ==,
@@ -134,20 +130,47 @@ static void test_bad_input(void) {
                   PW85_ERR_INVALID_ARGUMENT);
   g_assert_cmpint(pw85_overlap_batch(N, s.c, s.q, 1, pairs, NULL, st, 1), ==,
                   PW85_ERR_INVALID_ARGUMENT);
-  g_assert_cmpint(pw85_contact_batch(N, s.c, s.q, 1, NULL, c, st, 1), ==,
-                  PW85_ERR_INVALID_ARGUMENT);
-  g_assert_cmpint(pw85_contact_function_batch(N, s.c, NULL, 1, pairs, out, st, 1), ==,
-                  PW85_ERR_INVALID_ARGUMENT);
   g_assert_cmpint(pw85_overlap_batch(N, s.c, s.q, 1, pairs, v, st, -1), ==,
                   PW85_ERR_INVALID_ARGUMENT);
   g_assert_cmpint(pw85_overlap_batch(N, NULL, NULL, 0, NULL, NULL, NULL, 1), ==, PW85_OK);
 }
 
+static void test_contact_function_batch_bad_input(void) {
+  static scene s;
+  make_scene(&s, 14);
+  int st[4];
+  long long pairs[8];
+  memcpy(pairs, bad_pairs, sizeof pairs);
+  double out[8];
+  g_assert_cmpint(pw85_contact_function_batch(N, s.c, s.q, 4, pairs, out, st, 0), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+  g_assert_true(isnan(out[2]) && isnan(out[3]) && !isnan(out[0]));
+  g_assert_cmpint(pw85_contact_function_batch(N, s.c, NULL, 1, pairs, out, st, 1), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+}
+
+static void test_contact_batch_bad_input(void) {
+  static scene s;
+  make_scene(&s, 14);
+  int st[4];
+  long long pairs[8];
+  memcpy(pairs, bad_pairs, sizeof pairs);
+  pw85_contact_t c[4];
+  g_assert_cmpint(pw85_contact_batch(N, s.c, s.q, 4, pairs, c, st, 0), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+  g_assert_true(isnan(c[3].depth) && !isnan(c[2].depth));
+  g_assert_cmpint(pw85_contact_batch(N, s.c, s.q, 1, NULL, c, st, 1), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+}
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
-  g_test_add_func("/overlap_batch/threads-1-2", test_overlap_batch);
-  g_test_add_func("/contact_function_batch/threads-1-2", test_contact_function_batch);
-  g_test_add_func("/contact_batch/threads-1-2", test_contact_batch);
-  g_test_add_func("/batch/bad-input", test_bad_input);
+  g_test_add_func("/pw85_overlap_batch/threads-1-2", test_overlap_batch);
+  g_test_add_func("/pw85_contact_function_batch/threads-1-2", test_contact_function_batch);
+  g_test_add_func("/pw85_contact_batch/threads-1-2", test_contact_batch);
+  g_test_add_func("/pw85_overlap_batch/bad-input", test_overlap_batch_bad_input);
+  g_test_add_func("/pw85_contact_function_batch/bad-input",
+                  test_contact_function_batch_bad_input);
+  g_test_add_func("/pw85_contact_batch/bad-input", test_contact_batch_bad_input);
   return g_test_run();
 }

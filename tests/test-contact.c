@@ -1,4 +1,4 @@
-/* Tests of pw85_contact (issue 6; docs/contact_geometry.md): the contact
+/* Tests of pw85_contact (docs/contact_geometry.md): the contact
  * point lies on both ellipsoids scaled by mu and their outward normals there
  * are opposite; mu2 agrees with the exact-arithmetic reference and with
  * pw85_contact_function; dca = |r12| / mu; depth vanishes at tangency and
@@ -9,7 +9,7 @@
 #include <math.h>
 #include <pw85.h>
 
-#include "refgroup.h"
+#include "refdata.h"
 #include "testutil.h"
 
 /* Exact contact geometry in __float128 (113-bit significand): Q^{-1} v by
@@ -96,7 +96,7 @@ static void exact_geometry(const double r[3], const double q1[6], const double q
  *           surfaces through the double x0 (the rounding of x0 tilts the
  *           normal of a needle-like ellipsoid: ~2e-6 in class 3; n itself
  *           is within the n bound of the exact normal).
- * x0, n, lambda and surf are within ~1 ulp: the issue's 1e-12 holds in
+ * x0, n, lambda and surf are within ~1 ulp: the target 1e-12 holds in
  * every class; pt and opp are limited by the rounding of x0 to double.
  * x0 and n get 2 ulps (4.5e-16): the kernels without FMA (Dekker products,
  * no contraction) differ from the FMA ones by up to 1 ulp. pt in class 1
@@ -183,34 +183,34 @@ static void check_pair(const double r[3], const double q1[6], const double q2[6]
 }
 
 static void test_reference(void) {
-  ref_group g;
-  if (!ref_group_load("/contact", &g)) return;
+  RefPairs *g = refdata_pairs_or_skip("/contact");
+  if (g == NULL) return;
   size_t checked[4] = {0, 0, 0, 0};
-  for (size_t i = 0; i < g.n; i++) {
-    if (g.mu2[i] == 0.0) continue;
-    check_pair(g.r12 + 3 * i, g.q1 + 6 * i, g.q2 + 6 * i, g.mu2[i], g.cls[i], i % 10 == 0);
-    checked[g.cls[i]]++;
+  for (size_t i = 0; i < g->n; i++) {
+    if (g->mu2[i] == 0.0) continue;
+    check_pair(g->r12 + 3 * i, g->q1 + 6 * i, g->q2 + 6 * i, g->mu2[i], g->cls[i], i % 10 == 0);
+    checked[g->cls[i]]++;
   }
   for (int k = 0; k < 4; k++) g_assert_cmpuint(checked[k], >=, 1000);
-  ref_group_free(&g);
+  refdata_pairs_free(g);
 }
 
 static void test_near_contact(void) {
-  ref_group g;
-  if (!ref_group_load("/near_contact", &g)) return;
-  for (size_t i = 0; i < g.n; i++) {
-    check_pair(g.r12 + 3 * i, g.q1 + 6 * i, g.q2 + 6 * i, g.mu2[i], g.cls[i], i % 10 == 0);
+  RefPairs *g = refdata_pairs_or_skip("/near_contact");
+  if (g == NULL) return;
+  for (size_t i = 0; i < g->n; i++) {
+    check_pair(g->r12 + 3 * i, g->q1 + 6 * i, g->q2 + 6 * i, g->mu2[i], g->cls[i], i % 10 == 0);
     /* Near tangency the depth is small and its sign is the overlap verdict
      * whenever |mu2 - 1| exceeds the accuracy of mu2. */
     pw85_contact_t c;
-    g_assert_cmpint(pw85_contact(g.r12 + 3 * i, g.q1 + 6 * i, g.q2 + 6 * i, &c), ==,
+    g_assert_cmpint(pw85_contact(g->r12 + 3 * i, g->q1 + 6 * i, g->q2 + 6 * i, &c), ==,
                     PW85_OK);
-    if (fabs(g.mu2[i] - 1.0) > 1e-9) {
-      g_assert_true((c.depth > 0) == (g.mu2[i] < 1.0));
+    if (fabs(g->mu2[i] - 1.0) > 1e-9) {
+      g_assert_true((c.depth > 0) == (g->mu2[i] < 1.0));
     }
-    g_assert_cmpfloat(fabs(c.depth), <=, 2 * fabs(g.mu2[i] - 1.0) * c.dca + 1e-9 * c.dca);
+    g_assert_cmpfloat(fabs(c.depth), <=, 2 * fabs(g->mu2[i] - 1.0) * c.dca + 1e-9 * c.dca);
   }
-  ref_group_free(&g);
+  refdata_pairs_free(g);
 }
 
 /* Spheres 1.5 and 1 tangent at distance 2.5 along (3/5, 4/5, 0): depth 0,
@@ -257,9 +257,9 @@ static void test_bad_input(void) {
 
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
-  g_test_add_func("/contact/reference/contact", test_reference);
-  g_test_add_func("/contact/reference/near_contact", test_near_contact);
-  g_test_add_func("/contact/tangency/depth-sign", test_tangency_sign);
-  g_test_add_func("/contact/bad-input", test_bad_input);
+  g_test_add_func("/pw85_contact/reference/contact", test_reference);
+  g_test_add_func("/pw85_contact/reference/near_contact", test_near_contact);
+  g_test_add_func("/pw85_contact/tangency/depth-sign", test_tangency_sign);
+  g_test_add_func("/pw85_contact/bad-input", test_bad_input);
   return g_test_run();
 }

@@ -16,14 +16,12 @@
 #include <string.h>
 
 #include <glib.h>
-#include <hdf5.h>
-#include <hdf5_hl.h>
 
 #include "pw85.h"
+#include "refdata.h"
+#include "testutil.h"
 
 #define EPS DBL_EPSILON
-
-static double rel_err(double act, double exp) { return fabs(act - exp) / fabs(exp); }
 
 /* Q = R diag(a^2, b^2) R^T, R the rotation by t; computed in long double. */
 static void ellipse_q(double a, double b, double t, double q[3]) {
@@ -87,7 +85,7 @@ static void test_dca_2d_circles(void) {
       double u[2] = {3.0 * cos(0.7 * j), 3.0 * sin(0.7 * j)};
       double d = 0.0;
       g_assert_cmpint(pw85_dca_2d(u, q1, q2, &d), ==, PW85_OK);
-      g_assert_cmpfloat(rel_err(d, exp), <=, 4 * EPS);
+      g_assert_cmpfloat(rel_error(d, exp), <=, 4 * EPS);
     }
   }
 }
@@ -111,9 +109,9 @@ static void test_dca_2d_aligned(void) {
        * up to eps aspect^2 relative (the condition number of Q). */
       double tol = (t == 0.0) ? 4 * EPS : 16 * EPS * aspect * aspect;
       g_assert_cmpint(pw85_dca_2d(u, q1, q2, &d), ==, PW85_OK);
-      g_assert_cmpfloat(rel_err(d, ab[k][0] + ab[k][2]), <=, tol);
+      g_assert_cmpfloat(rel_error(d, ab[k][0] + ab[k][2]), <=, tol);
       g_assert_cmpint(pw85_dca_2d(u, q1, q2p, &d), ==, PW85_OK);
-      g_assert_cmpfloat(rel_err(d, ab[k][0] + ab[k][3]), <=, tol);
+      g_assert_cmpfloat(rel_error(d, ab[k][0] + ab[k][3]), <=, tol);
     }
 }
 
@@ -144,7 +142,7 @@ static void test_dca_2d_random(void) {
      * differ by 4 at most). Bound: 16 eps (4 aspect)^2, docs/dca.md. */
     double aspect = 4.0 * fmax(a1, a2);
     double tol = 16 * EPS * fmax(aspect * aspect, 16.0);
-    double e0 = rel_err(d, dref), e1 = rel_err(dcf, dref), e2 = rel_err(d, dcf);
+    double e0 = rel_error(d, dref), e1 = rel_error(dcf, dref), e2 = rel_error(d, dcf);
     g_assert_cmpfloat(e0, <=, tol);
     g_assert_cmpfloat(e1, <=, tol);
     g_assert_cmpfloat(e2, <=, 2 * tol);
@@ -173,8 +171,8 @@ static void test_dca_2d_moderate(void) {
     g_assert_cmpint(pw85_dca_2d(u, q1, q2, &d), ==, PW85_OK);
     g_assert_cmpint(pw85_contact_function_2d(u, q1, q2, out), ==, PW85_OK);
     double dref = (double)(1.0L / sqrtl(mu2_2d_ld(u, q1, q2, &lambda)));
-    g_assert_cmpfloat(rel_err(d, dref), <=, 64 * EPS);
-    g_assert_cmpfloat(rel_err(1.0 / sqrt(out[0]), dref), <=, 64 * EPS);
+    g_assert_cmpfloat(rel_error(d, dref), <=, 64 * EPS);
+    g_assert_cmpfloat(rel_error(1.0 / sqrt(out[0]), dref), <=, 64 * EPS);
   }
   g_rand_free(rng);
 }
@@ -267,21 +265,10 @@ static void test_dca_bad_input(void) {
   g_assert_cmpint(pw85_dca_ex(u, q, q, 0.0, &d, NULL), ==, PW85_OK);
   /* Two identical ellipsoids along u: d = 2 / sqrt(u^T Q^{-1} u) = 2 sqrt(Schur
    * complement) = 2 sqrt(Q00 - Q01^2 / Q11) here (Q02 = Q12 = 0). */
-  g_assert_cmpfloat(rel_err(d, 2.0 * sqrt(q[0] - q[1] * q[1] / q[3])), <=, 8 * EPS);
+  g_assert_cmpfloat(rel_error(d, 2.0 * sqrt(q[0] - q[1] * q[1] / q[3])), <=, 8 * EPS);
 }
 
 /* ---- 3D closed forms ---------------------------------------------------- */
-
-static void sym_from_axes(const double radii[3], const double axes[9], double q[6]) {
-  int idx = 0;
-  for (int i = 0; i < 3; i++)
-    for (int j = i; j < 3; j++, idx++) {
-      long double s = 0.0L;
-      for (int k = 0; k < 3; k++)
-        s += (long double)radii[k] * radii[k] * axes[3 * k + i] * axes[3 * k + j];
-      q[idx] = (double)s;
-    }
-}
 
 static void test_dca_zheng_closed_forms(void) {
   const int methods[] = {PW85_METHOD_ZHENG, PW85_METHOD_BRENT};
@@ -291,7 +278,7 @@ static void test_dca_zheng_closed_forms(void) {
     for (int j = 0; j < 6; j++) {
       double u[3] = {cos(j), sin(j) * cos(2.0 * j), sin(j) * sin(2.0 * j)}, d;
       g_assert_cmpint(pw85_dca(u, s1, s2, methods[m], &d), ==, PW85_OK);
-      g_assert_cmpfloat(rel_err(d, 2.25), <=, 8 * EPS);
+      g_assert_cmpfloat(rel_error(d, 2.25), <=, 8 * EPS);
     }
   /* Diagonal ellipsoids, u along a coordinate axis: d = a1_k + a2_k, where
    * the principal axes are along the coordinate axes. Both methods reach
@@ -306,89 +293,22 @@ static void test_dca_zheng_closed_forms(void) {
       u[axis] = -2.0;
       int ev;
       g_assert_cmpint(pw85_dca_ex(u, q1, q2, 0.0, &d, &ev), ==, PW85_OK);
-      g_assert_cmpfloat(rel_err(d, r1[k][axis] + r2[k][axis]), <=, 8 * EPS);
+      g_assert_cmpfloat(rel_error(d, r1[k][axis] + r2[k][axis]), <=, 8 * EPS);
       g_assert_cmpint(ev, <=, PW85_DCA_MAX_EVAL);
       g_assert_cmpint(pw85_dca(u, q1, q2, PW85_METHOD_BRENT, &d), ==, PW85_OK);
-      g_assert_cmpfloat(rel_err(d, r1[k][axis] + r2[k][axis]), <=, 1e-10);
+      g_assert_cmpfloat(rel_error(d, r1[k][axis] + r2[k][axis]), <=, 1e-10);
     }
   /* Rotated: u along the first axis of both (rotated) ellipsoids. */
   double axes[9] = {2.0 / 3, 2.0 / 3, 1.0 / 3, -2.0 / 3, 1.0 / 3, 2.0 / 3,
                     1.0 / 3, -2.0 / 3, 2.0 / 3};
   double ra[3] = {5.0, 0.3, 2.0}, rb[3] = {0.7, 9.0, 0.2}, q1[6], q2[6], d;
-  sym_from_axes(ra, axes, q1);
-  sym_from_axes(rb, axes, q2);
+  make_q(ra, axes, q1);
+  make_q(rb, axes, q2);
   g_assert_cmpint(pw85_dca(axes, q1, q2, PW85_METHOD_ZHENG, &d), ==, PW85_OK);
-  g_assert_cmpfloat(rel_err(d, 5.7), <=, 64 * EPS * 30.0 * 30.0);
+  g_assert_cmpfloat(rel_error(d, 5.7), <=, 64 * EPS * 30.0 * 30.0);
 }
 
 /* ---- 3D against the reference data ------------------------------------- */
-
-static const char *ref_path(void) {
-  const char *env = g_getenv("PW85_REF_DATA");
-  return (env != NULL && env[0] != '\0') ? env : PW85_REF_DATA_PATH;
-}
-
-typedef struct {
-  int n;
-  double *r12, *q1, *q2, *mu2, *radii1, *radii2;
-  int *kind; /* /special only, else NULL */
-} RefGroup;
-
-static double *read_doubles(hid_t file, const char *name, int n, int cols) {
-  double *buf = g_new(double, (size_t)n * cols);
-  g_assert_cmpint(H5LTread_dataset_double(file, name, buf), >=, 0);
-  return buf;
-}
-
-static gboolean load_group(const char *group, RefGroup *g) {
-  const char *path = ref_path();
-  if (!g_file_test(path, G_FILE_TEST_EXISTS)) return FALSE;
-  hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-  g_assert_cmpint(file, >=, 0);
-  char name[128];
-  hsize_t dims[2];
-  g_snprintf(name, sizeof name, "/%s/mu2", group);
-  g_assert_cmpint(H5LTget_dataset_info(file, name, dims, NULL, NULL), >=, 0);
-  g->n = (int)dims[0];
-#define READ(field, ds, cols)                                 \
-  g_snprintf(name, sizeof name, "/%s/%s", group, ds);         \
-  g->field = read_doubles(file, name, g->n, cols);
-  READ(r12, "r12", 3);
-  READ(q1, "q1", 6);
-  READ(q2, "q2", 6);
-  READ(mu2, "mu2", 1);
-  READ(radii1, "radii1", 3);
-  READ(radii2, "radii2", 3);
-#undef READ
-  g->kind = NULL;
-  g_snprintf(name, sizeof name, "/%s/kind", group);
-  if (H5Lexists(file, name, H5P_DEFAULT) > 0) {
-    g->kind = g_new(int, g->n);
-    g_assert_cmpint(H5LTread_dataset_int(file, name, g->kind), >=, 0);
-  }
-  H5Fclose(file);
-  return TRUE;
-}
-
-static void free_group(RefGroup *g) {
-  g_free(g->r12);
-  g_free(g->q1);
-  g_free(g->q2);
-  g_free(g->mu2);
-  g_free(g->radii1);
-  g_free(g->radii2);
-  g_free(g->kind);
-}
-
-/* Largest over smallest of the six semi-axes of the pair. */
-static double pair_aspect(const RefGroup *g, int i) {
-  double lo = INFINITY, hi = 0.0;
-  for (int k = 0; k < 3; k++) {
-    lo = fmin(lo, fmin(g->radii1[3 * i + k], g->radii2[3 * i + k]));
-    hi = fmax(hi, fmax(g->radii1[3 * i + k], g->radii2[3 * i + k]));
-  }
-  return hi / lo;
-}
 
 /* Documented accuracy (docs/dca.md): relative error of d at most
  * 1e-9 up to pair aspect ratio 100, 1e-7 up to 1e4, 1e-3 beyond. */
@@ -402,34 +322,35 @@ static double documented_bound(double aspect) {
 static const double bin_edges[NBINS] = {100.0, 1e3, 1e4, INFINITY};
 
 static void check_reference(const char *group, int method) {
-  RefGroup g;
-  if (!load_group(group, &g)) {
-    g_test_skip("reference data file not found (set PW85_REF_DATA)");
-    return;
-  }
+  char *path = g_strdup_printf("/%s", group);
+  RefPairs *g = refdata_pairs_or_skip(path);
+  g_free(path);
+  if (g == NULL) return;
+  g_assert_nonnull(g->radii1);
+  g_assert_nonnull(g->radii2);
   double worst[NBINS] = {0}, mean_ev = 0.0;
   int count[NBINS] = {0}, max_ev = 0, n_used = 0;
-  for (int i = 0; i < g.n; i++) {
-    const double *r = g.r12 + 3 * i;
+  for (gsize i = 0; i < g->n; i++) {
+    const double *r = g->r12 + 3 * i;
     double rr = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
     if (rr == 0.0) continue; /* coincident centres: no direction */
-    double dref = sqrt(rr / g.mu2[i]), d;
+    double dref = sqrt(rr / g->mu2[i]), d;
     int ev = 0, status;
     if (method == PW85_METHOD_ZHENG) {
-      status = pw85_dca_ex(r, g.q1 + 6 * i, g.q2 + 6 * i, 0.0, &d, &ev);
+      status = pw85_dca_ex(r, g->q1 + 6 * i, g->q2 + 6 * i, 0.0, &d, &ev);
       g_assert_cmpint(status, ==, PW85_OK);
       max_ev = MAX(max_ev, ev);
       mean_ev += ev;
     } else {
-      status = pw85_dca(r, g.q1 + 6 * i, g.q2 + 6 * i, method, &d);
+      status = pw85_dca(r, g->q1 + 6 * i, g->q2 + 6 * i, method, &d);
       /* The contact-function methods may flag extreme pairs; d is written. */
       g_assert_true(status == PW85_OK || status == PW85_ERR_NO_CONVERGENCE ||
                     status == PW85_ERR_INACCURATE);
-      if (pair_aspect(&g, i) <= 100.0) g_assert_cmpint(status, ==, PW85_OK);
+      if (refdata_pair_aspect(g, i) <= 100.0) g_assert_cmpint(status, ==, PW85_OK);
     }
-    double aspect = pair_aspect(&g, i), e = rel_err(d, dref);
+    double aspect = refdata_pair_aspect(g, i), e = rel_error(d, dref);
     if (e > documented_bound(aspect))
-      g_test_message("%s #%d: aspect %.3g, d = %.17g, reference %.17g, rel. error %.3g",
+      g_test_message("%s #%zu: aspect %.3g, d = %.17g, reference %.17g, rel. error %.3g",
                      group, i, aspect, d, dref, e);
     g_assert_cmpfloat(e, <=, documented_bound(aspect));
     int b = 0;
@@ -448,7 +369,7 @@ static void check_reference(const char *group, int method) {
     /* Measured max 45 (docs/dca.md); a regression of the search shows here. */
     g_assert_cmpint(max_ev, <=, 60);
   }
-  free_group(&g);
+  refdata_pairs_free(g);
 }
 
 static void test_dca_zheng_contact(void) { check_reference("contact", PW85_METHOD_ZHENG); }
@@ -459,68 +380,6 @@ static void test_dca_zheng_special(void) { check_reference("special", PW85_METHO
 static void test_dca_brent_contact(void) { check_reference("contact", PW85_METHOD_BRENT); }
 static void test_dca_default_contact(void) { check_reference("contact", PW85_METHOD_DEFAULT); }
 
-/* pw85_contact_function_method with PW85_METHOD_ZHENG: mu2 = |r12|^2 / d^2,
- * lambda recovered from the optimal plane and polished (docs/dca.md). Up to
- * pair aspect 100: PW85_OK, mu2 to 1e-9 (documented), lambda to 1e-12;
- * beyond: PW85_OK only when the error estimate is within 1e-9 mu2, checked
- * to hold up to aspect 1e3 (measured beyond: printed). */
-static void check_method_zheng(const char *group) {
-  RefGroup g;
-  if (!load_group(group, &g)) {
-    g_test_skip("reference data file not found (set PW85_REF_DATA)");
-    return;
-  }
-  RefGroup lam;
-  /* lambda reference: read here (not needed by the other checks). */
-  hid_t file = H5Fopen(ref_path(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  char name[128];
-  g_snprintf(name, sizeof name, "/%s/lambda", group);
-  lam.mu2 = read_doubles(file, name, g.n, 1);
-  H5Fclose(file);
-  double worst_mu2 = 0.0, worst_lambda = 0.0;
-  int n_inaccurate = 0, n_ok_wrong = 0, n_high = 0;
-  for (int i = 0; i < g.n; i++) {
-    const double *r = g.r12 + 3 * i;
-    pw85_result res;
-    int status = pw85_contact_function_method(r, g.q1 + 6 * i, g.q2 + 6 * i,
-                                              PW85_METHOD_ZHENG, &res);
-    if (r[0] == 0.0 && r[1] == 0.0 && r[2] == 0.0) {
-      g_assert_cmpint(status, ==, PW85_OK);
-      g_assert_cmpfloat(res.mu2, ==, 0.0);
-      continue;
-    }
-    double aspect = pair_aspect(&g, i), e = rel_err(res.mu2, g.mu2[i]);
-    double el = fabs(res.lambda - lam.mu2[i]);
-    g_assert_true(status == PW85_OK || status == PW85_ERR_INACCURATE);
-    g_assert_cmpint(res.method, ==, PW85_METHOD_ZHENG);
-    g_assert_cmpint(res.iterations, >, 0);
-    g_assert_cmpint(res.iterations, <=, PW85_DCA_MAX_EVAL);
-    if (aspect <= 100.0) {
-      g_assert_cmpint(status, ==, PW85_OK);
-      g_assert_cmpfloat(e, <=, 1e-9);
-      g_assert_cmpfloat(el, <=, 1e-12);
-      worst_mu2 = fmax(worst_mu2, e);
-      worst_lambda = fmax(worst_lambda, el);
-    } else {
-      n_high++;
-      if (status == PW85_ERR_INACCURATE) n_inaccurate++;
-      if (status == PW85_OK && e > 1e-9) {
-        n_ok_wrong++;
-        g_assert_cmpfloat(aspect, >, 1e3);
-      }
-    }
-  }
-  g_test_message("%s, contact_function_method(ZHENG), pair aspect <= 100: max rel. error "
-                 "of mu2 %.3g, max |lambda error| %.3g; aspect > 100: %d pairs, %d "
-                 "PW85_ERR_INACCURATE, %d PW85_OK with error > 1e-9",
-                 group, worst_mu2, worst_lambda, n_high, n_inaccurate, n_ok_wrong);
-  g_free(lam.mu2);
-  free_group(&g);
-}
-
-static void test_method_zheng_contact(void) { check_method_zheng("contact"); }
-static void test_method_zheng_special(void) { check_method_zheng("special"); }
-
 /* The plane-search tolerance: a coarse tolerance costs fewer evaluations
  * and, since d is stationary at the optimal plane, still leaves an error of
  * order d'' tol^2. */
@@ -530,20 +389,9 @@ static void test_dca_ex_theta_tol(void) {
   for (int n = 0; n < 200; n++) {
     double q1[6], q2[6], axes[9], radii[3], u[3];
     for (int e = 0; e < 2; e++) {
-      /* Random rotation from a random unit quaternion. */
-      double w[4], s = 0.0;
-      for (int k = 0; k < 4; k++) {
-        w[k] = g_rand_double_range(rng, -1.0, 1.0);
-        s += w[k] * w[k];
-      }
-      s = sqrt(s);
-      double a = w[0] / s, b = w[1] / s, c = w[2] / s, dd = w[3] / s;
-      double m[9] = {a * a + b * b - c * c - dd * dd, 2 * (b * c - a * dd), 2 * (b * dd + a * c),
-                     2 * (b * c + a * dd), a * a - b * b + c * c - dd * dd, 2 * (c * dd - a * b),
-                     2 * (b * dd - a * c), 2 * (c * dd + a * b), a * a - b * b - c * c + dd * dd};
-      memcpy(axes, m, sizeof m);
-      for (int k = 0; k < 3; k++) radii[k] = exp(g_rand_double_range(rng, log(0.1), log(10.0)));
-      sym_from_axes(radii, axes, e == 0 ? q1 : q2);
+      random_axes(rng, axes);
+      random_radii(rng, 0.1, 10.0, radii);
+      make_q(radii, axes, e == 0 ? q1 : q2);
     }
     for (int k = 0; k < 3; k++) u[k] = g_rand_double_range(rng, -1.0, 1.0);
     double d_fine, d_coarse, d_brent;
@@ -554,8 +402,8 @@ static void test_dca_ex_theta_tol(void) {
     g_assert_cmpint(ev_coarse, <=, ev_fine);
     /* The maximum is approached from below: d_coarse <= d_fine (+ rounding). */
     g_assert_cmpfloat(d_coarse, <=, d_fine * (1.0 + 64 * EPS));
-    g_assert_cmpfloat(rel_err(d_coarse, d_fine), <=, 1e-3);
-    g_assert_cmpfloat(rel_err(d_fine, d_brent), <=, 1e-9);
+    g_assert_cmpfloat(rel_error(d_coarse, d_fine), <=, 1e-3);
+    g_assert_cmpfloat(rel_error(d_fine, d_brent), <=, 1e-9);
     total_fine += ev_fine;
     total_coarse += ev_coarse;
   }
@@ -567,22 +415,18 @@ static void test_dca_ex_theta_tol(void) {
 
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
-  g_test_add_func("/dca_2d/circles", test_dca_2d_circles);
-  g_test_add_func("/dca_2d/aligned", test_dca_2d_aligned);
-  g_test_add_func("/dca_2d/moderate_aspect", test_dca_2d_moderate);
-  g_test_add_func("/dca_2d/random_aspect_1e3", test_dca_2d_random);
-  g_test_add_func("/dca_2d/bad_input", test_dca_2d_bad_input);
-  g_test_add_func("/dca/bad_input", test_dca_bad_input);
-  g_test_add_func("/dca/zheng/closed_forms", test_dca_zheng_closed_forms);
-  g_test_add_func("/dca/zheng/reference/contact", test_dca_zheng_contact);
-  g_test_add_func("/dca/zheng/reference/near_contact", test_dca_zheng_near_contact);
-  g_test_add_func("/dca/zheng/reference/special", test_dca_zheng_special);
-  g_test_add_func("/dca/brent/reference/contact", test_dca_brent_contact);
-  g_test_add_func("/dca/default/reference/contact", test_dca_default_contact);
-  g_test_add_func("/contact_function_method/zheng/reference/contact",
-                  test_method_zheng_contact);
-  g_test_add_func("/contact_function_method/zheng/reference/special",
-                  test_method_zheng_special);
-  g_test_add_func("/dca_ex/theta_tol", test_dca_ex_theta_tol);
+  g_test_add_func("/pw85_dca_2d/circles", test_dca_2d_circles);
+  g_test_add_func("/pw85_dca_2d/aligned", test_dca_2d_aligned);
+  g_test_add_func("/pw85_dca_2d/moderate_aspect", test_dca_2d_moderate);
+  g_test_add_func("/pw85_dca_2d/random_aspect_1e3", test_dca_2d_random);
+  g_test_add_func("/pw85_dca_2d/bad_input", test_dca_2d_bad_input);
+  g_test_add_func("/pw85_dca/bad_input", test_dca_bad_input);
+  g_test_add_func("/pw85_dca/zheng/closed_forms", test_dca_zheng_closed_forms);
+  g_test_add_func("/pw85_dca/zheng/reference/contact", test_dca_zheng_contact);
+  g_test_add_func("/pw85_dca/zheng/reference/near_contact", test_dca_zheng_near_contact);
+  g_test_add_func("/pw85_dca/zheng/reference/special", test_dca_zheng_special);
+  g_test_add_func("/pw85_dca/brent/reference/contact", test_dca_brent_contact);
+  g_test_add_func("/pw85_dca/default/reference/contact", test_dca_default_contact);
+  g_test_add_func("/pw85_dca_ex/theta_tol", test_dca_ex_theta_tol);
   return g_test_run();
 }

@@ -189,12 +189,12 @@ static void test_contact_function_threads(void) {
 
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
-  g_test_add_func("/version", test_version);
-  g_test_add_func("/strerror", test_strerror);
-  g_test_add_func("/contact_function/bad_input", test_contact_function_bad_input);
-  g_test_add_func("/contact_function/not_spd", test_contact_function_not_spd);
-  g_test_add_func("/contact_function/extreme_r12", test_contact_function_extreme_r12);
-  g_test_add_func("/contact_function/gsl_error_handler", test_gsl_error_handler_untouched);
-  g_test_add_func("/contact_function/threads", test_contact_function_threads);
+  g_test_add_func("/pw85_version", test_version);
+  g_test_add_func("/pw85_strerror", test_strerror);
+  g_test_add_func("/pw85_contact_function/bad_input", test_contact_function_bad_input);
+  g_test_add_func("/pw85_contact_function/not_spd", test_contact_function_not_spd);
+  g_test_add_func("/pw85_contact_function/extreme_r12", test_contact_function_extreme_r12);
+  g_test_add_func("/pw85_contact_function/gsl_error_handler", test_gsl_error_handler_untouched);
+  g_test_add_func("/pw85_contact_function/threads", test_contact_function_threads);
   return g_test_run();
 }

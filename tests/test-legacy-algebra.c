@@ -6,40 +6,11 @@
 
 #include <glib.h>
 
-#include "legacy_testutil.h"
+#include "refdata.h"
+#include "testutil.h"
 #include "pw85_legacy.h"
 
 #define NUM_RANDOM 2000
-
-/* Random symmetric positive definite matrix R diag(e) R^T, eigenvalues
- * log-uniform in [1/sqrt(cond), sqrt(cond)], R a random rotation (from a
- * random unit quaternion). */
-static void random_spd(GRand *rng, double cond, double a[6]) {
-  double qv[4], n = 0.0;
-  do {
-    n = 0.0;
-    for (int i = 0; i < 4; ++i) {
-      qv[i] = g_rand_double_range(rng, -1.0, 1.0);
-      n += qv[i] * qv[i];
-    }
-  } while (n > 1.0 || n < 1e-3);
-  n = sqrt(n);
-  double const w = qv[0] / n, x = qv[1] / n, y = qv[2] / n, z = qv[3] / n;
-  double const rot[3][3] = {
-      {1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
-      {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
-      {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
-  double e[3];
-  double const h = 0.5 * log(cond);
-  for (int i = 0; i < 3; ++i) e[i] = exp(g_rand_double_range(rng, -h, h));
-  int const idx[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
-  for (int k = 0; k < 6; ++k) {
-    __float128 s = 0;
-    for (int m = 0; m < 3; ++m)
-      s += (__float128)rot[idx[k][0]][m] * e[m] * rot[idx[k][1]][m];
-    a[k] = (double)s;
-  }
-}
 
 static void to_q(const double *x, int n, __float128 *y) {
   for (int i = 0; i < n; ++i) y[i] = x[i];
@@ -57,7 +28,7 @@ static void test_det_sym_random(void) {
     __float128 aq[6];
     to_q(a, 6, aq);
     double const exp = (double)q_det_sym(aq);
-    double const err = legacy_rel_error(pw85_legacy__det_sym(a), exp);
+    double const err = rel_error(pw85_legacy__det_sym(a), exp);
     if (err > max_err) max_err = err;
     g_assert_cmpfloat(err, <=, 1e-12);
   }
@@ -103,7 +74,7 @@ static void test_xT_adjA_x_random(void) {
     to_q(a, 6, aq);
     to_q(x, 3, xq);
     double const exp = (double)q_xT_adjA_x(xq, aq);
-    double const err = legacy_rel_error(pw85_legacy__xT_adjA_x(x, a), exp);
+    double const err = rel_error(pw85_legacy__xT_adjA_x(x, a), exp);
     if (err > max_err) max_err = err;
     /* adj(A) is positive definite with cond <= 100: no cancellation. */
     g_assert_cmpfloat(err, <=, 1e-12);
@@ -168,14 +139,17 @@ typedef struct {
 } RefGrid;
 
 static gboolean read_grid(RefGrid *g) {
-  hid_t const file = legacy_open_ref_data();
-  if (file < 0) return FALSE;
-  g->spheroids = legacy_read_double(file, "/spheroids", &g->ns);
-  g->directions = legacy_read_double(file, "/directions", &g->nd);
-  g->lambdas = legacy_read_double(file, "/lambdas", &g->nl);
+  hid_t file;
+  if (!refdata_open_or_skip(&file)) return FALSE;
+  g->spheroids = refdata_read_double_all(file, "/spheroids", &g->ns);
+  g_assert_nonnull(g->spheroids);
+  g->directions = refdata_read_double_all(file, "/directions", &g->nd);
+  g_assert_nonnull(g->directions);
+  g->lambdas = refdata_read_double_all(file, "/lambdas", &g->nl);
+  g_assert_nonnull(g->lambdas);
   g->ns /= 6;
   g->nd /= 3;
-  H5Fclose(file);
+  refdata_close(file);
   g_assert_cmpuint(g->nl, ==, 11);
   return TRUE;
 }
@@ -195,7 +169,7 @@ typedef struct {
 } PolyErr;
 
 static void poly_err_add(PolyErr *e, double act, double exp, double mag) {
-  double const rel = legacy_rel_error(act, exp);
+  double const rel = rel_error(act, exp);
   double const scaled = fabs(act - exp) / (DBL_EPSILON * mag);
   if (rel > e->max_rel) e->max_rel = rel;
   if (scaled > e->max_scaled) e->max_scaled = scaled;
@@ -284,12 +258,12 @@ static void test_rT_adjQ_r_as_poly_reference(void) {
 
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
-  g_test_add_func("/legacy/det_sym/random_spd", test_det_sym_random);
-  g_test_add_func("/legacy/det_sym/general", test_det_sym_general);
-  g_test_add_func("/legacy/xT_adjA_x/random_spd", test_xT_adjA_x_random);
-  g_test_add_func("/legacy/helpers/bad_input", test_helpers_bad_input);
-  g_test_add_func("/legacy/detQ_as_poly/reference_spheroids", test_detQ_as_poly_reference);
-  g_test_add_func("/legacy/rT_adjQ_r_as_poly/reference_spheroids",
+  g_test_add_func("/pw85_legacy__det_sym/random_spd", test_det_sym_random);
+  g_test_add_func("/pw85_legacy__det_sym/general", test_det_sym_general);
+  g_test_add_func("/pw85_legacy__xT_adjA_x/random_spd", test_xT_adjA_x_random);
+  g_test_add_func("/pw85_legacy__helpers/bad_input", test_helpers_bad_input);
+  g_test_add_func("/pw85_legacy__detQ_as_poly/reference/spheroids", test_detQ_as_poly_reference);
+  g_test_add_func("/pw85_legacy__rT_adjQ_r_as_poly/reference/spheroids",
                   test_rT_adjQ_r_as_poly_reference);
   return g_test_run();
 }

@@ -9,7 +9,8 @@
 
 #include <glib.h>
 
-#include "legacy_testutil.h"
+#include "refdata.h"
+#include "testutil.h"
 #include "pw85_legacy.h"
 
 #define NUM_CLASSES 4
@@ -65,26 +66,31 @@ typedef struct {
 
 static void run_group(gconstpointer data) {
   const Case *c = data;
-  hid_t const file = legacy_open_ref_data();
-  if (file < 0) return;
+  hid_t file;
+  if (!refdata_open_or_skip(&file)) return;
   gchar *name;
   gsize n, n3, n6, nq, nc;
   name = g_strdup_printf("/%s/r12", c->group);
-  double *r12 = legacy_read_double(file, name, &n3);
+  double *r12 = refdata_read_double_all(file, name, &n3);
+  g_assert_nonnull(r12);
   g_free(name);
   name = g_strdup_printf("/%s/q1", c->group);
-  double *q1 = legacy_read_double(file, name, &n6);
+  double *q1 = refdata_read_double_all(file, name, &n6);
+  g_assert_nonnull(q1);
   g_free(name);
   name = g_strdup_printf("/%s/q2", c->group);
-  double *q2 = legacy_read_double(file, name, &nq);
+  double *q2 = refdata_read_double_all(file, name, &nq);
+  g_assert_nonnull(q2);
   g_free(name);
   name = g_strdup_printf("/%s/mu2", c->group);
-  double *mu2 = legacy_read_double(file, name, &n);
+  double *mu2 = refdata_read_double_all(file, name, &n);
+  g_assert_nonnull(mu2);
   g_free(name);
   name = g_strdup_printf("/%s/class", c->group);
-  int *cls = legacy_read_int(file, name, &nc);
+  int *cls = refdata_read_int_all(file, name, &nc);
+  g_assert_nonnull(cls);
   g_free(name);
-  H5Fclose(file);
+  refdata_close(file);
   g_assert_cmpuint(n3, ==, 3 * n);
   g_assert_cmpuint(n6, ==, 6 * n);
   g_assert_cmpuint(nc, ==, n);
@@ -106,7 +112,7 @@ static void run_group(gconstpointer data) {
     g_assert_true(status == PW85_OK || status == PW85_ERR_NO_CONVERGENCE ||
                   status == PW85_ERR_INACCURATE);
     ++by_status[-status];
-    double const err = legacy_rel_error(out[0], mu2[i]);
+    double const err = rel_error(out[0], mu2[i]);
     ++count[k];
     if (!(err <= max_all[k])) max_all[k] = err;
     if (status == PW85_OK) {
@@ -164,15 +170,20 @@ static const double special_ok_max_rel[2] = {1e-9, 2e-10};
 
 static void run_special(gconstpointer data) {
   int const method = GPOINTER_TO_INT(data);
-  hid_t const file = legacy_open_ref_data();
-  if (file < 0) return;
+  hid_t file;
+  if (!refdata_open_or_skip(&file)) return;
   gsize n, n3, n6, nq, nk;
-  double *r12 = legacy_read_double(file, "/special/r12", &n3);
-  double *q1 = legacy_read_double(file, "/special/q1", &n6);
-  double *q2 = legacy_read_double(file, "/special/q2", &nq);
-  double *mu2 = legacy_read_double(file, "/special/mu2", &n);
-  int *kind = legacy_read_int(file, "/special/kind", &nk);
-  H5Fclose(file);
+  double *r12 = refdata_read_double_all(file, "/special/r12", &n3);
+  g_assert_nonnull(r12);
+  double *q1 = refdata_read_double_all(file, "/special/q1", &n6);
+  g_assert_nonnull(q1);
+  double *q2 = refdata_read_double_all(file, "/special/q2", &nq);
+  g_assert_nonnull(q2);
+  double *mu2 = refdata_read_double_all(file, "/special/mu2", &n);
+  g_assert_nonnull(mu2);
+  int *kind = refdata_read_int_all(file, "/special/kind", &nk);
+  g_assert_nonnull(kind);
+  refdata_close(file);
   g_assert_cmpuint(n3, ==, 3 * n);
   g_assert_cmpuint(nk, ==, n);
   ContactFn const fn = method == 1 ? pw85_legacy_contact_function1
@@ -184,7 +195,7 @@ static void run_special(gconstpointer data) {
     int const status = fn(r12 + 3 * i, q1 + 6 * i, q2 + 6 * i, out);
     g_assert_true(status == PW85_OK || status == PW85_ERR_NO_CONVERGENCE ||
                   status == PW85_ERR_INACCURATE);
-    double const err = legacy_rel_error(out[0], mu2[i]);
+    double const err = rel_error(out[0], mu2[i]);
     if (status != PW85_OK) {
       ++flagged;
     } else {
@@ -259,21 +270,21 @@ int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   static const Case cases[] = {
       {"contact", 1}, {"contact", 2}, {"near_contact", 1}, {"near_contact", 2}};
-  g_test_add_data_func("/legacy/contact_function1/reference_contact", &cases[0], run_group);
-  g_test_add_data_func("/legacy/contact_function2/reference_contact", &cases[1], run_group);
-  g_test_add_data_func("/legacy/contact_function1/reference_near_contact", &cases[2],
+  g_test_add_data_func("/pw85_legacy_contact_function1/reference/contact", &cases[0], run_group);
+  g_test_add_data_func("/pw85_legacy_contact_function2/reference/contact", &cases[1], run_group);
+  g_test_add_data_func("/pw85_legacy_contact_function1/reference/near_contact", &cases[2],
                        run_group);
-  g_test_add_data_func("/legacy/contact_function2/reference_near_contact", &cases[3],
+  g_test_add_data_func("/pw85_legacy_contact_function2/reference/near_contact", &cases[3],
                        run_group);
-  g_test_add_data_func("/legacy/contact_function1/reference_special", GINT_TO_POINTER(1),
+  g_test_add_data_func("/pw85_legacy_contact_function1/reference/special", GINT_TO_POINTER(1),
                        run_special);
-  g_test_add_data_func("/legacy/contact_function2/reference_special", GINT_TO_POINTER(2),
+  g_test_add_data_func("/pw85_legacy_contact_function2/reference/special", GINT_TO_POINTER(2),
                        run_special);
-  g_test_add_data_func("/legacy/contact_function1/spheres", GINT_TO_POINTER(1), test_spheres);
-  g_test_add_data_func("/legacy/contact_function2/spheres", GINT_TO_POINTER(2), test_spheres);
-  g_test_add_data_func("/legacy/contact_function1/bad_input", GINT_TO_POINTER(1),
+  g_test_add_data_func("/pw85_legacy_contact_function1/spheres", GINT_TO_POINTER(1), test_spheres);
+  g_test_add_data_func("/pw85_legacy_contact_function2/spheres", GINT_TO_POINTER(2), test_spheres);
+  g_test_add_data_func("/pw85_legacy_contact_function1/bad_input", GINT_TO_POINTER(1),
                        test_bad_input);
-  g_test_add_data_func("/legacy/contact_function2/bad_input", GINT_TO_POINTER(2),
+  g_test_add_data_func("/pw85_legacy_contact_function2/bad_input", GINT_TO_POINTER(2),
                        test_bad_input);
   return g_test_run();
 }

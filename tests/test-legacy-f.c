@@ -9,7 +9,8 @@
 
 #include <glib.h>
 
-#include "legacy_testutil.h"
+#include "refdata.h"
+#include "testutil.h"
 #include "pw85_legacy.h"
 
 #define NUM_BINS 16
@@ -33,14 +34,18 @@ static const double f1_deriv_max_err[3] = {1e-10, 1e-10, 1e-10};
 static const double f2_deriv_max_err[3] = {3e-10, 2.0, 40.0};
 
 static void test_f_histogram(void) {
-  hid_t const file = legacy_open_ref_data();
-  if (file < 0) return;
+  hid_t file;
+  if (!refdata_open_or_skip(&file)) return;
   gsize ns, nd, nl, nf;
-  double *spheroids = legacy_read_double(file, "/spheroids", &ns);
-  double *directions = legacy_read_double(file, "/directions", &nd);
-  double *lambdas = legacy_read_double(file, "/lambdas", &nl);
-  double *expected = legacy_read_double(file, "/F", &nf);
-  H5Fclose(file);
+  double *spheroids = refdata_read_double_all(file, "/spheroids", &ns);
+  g_assert_nonnull(spheroids);
+  double *directions = refdata_read_double_all(file, "/directions", &nd);
+  g_assert_nonnull(directions);
+  double *lambdas = refdata_read_double_all(file, "/lambdas", &nl);
+  g_assert_nonnull(lambdas);
+  double *expected = refdata_read_double_all(file, "/F", &nf);
+  g_assert_nonnull(expected);
+  refdata_close(file);
   ns /= 6;
   nd /= 3;
   g_assert_cmpuint(nf, ==, ns * ns * nd * nl);
@@ -63,8 +68,8 @@ static void test_f_histogram(void) {
           act[1] = pw85_legacy_f1(x, params, params + 3, params + 9, NULL);
           act[2] = pw85_legacy_f2(x, params, params + 3, params + 9, NULL);
           for (int m = 0; m < 3; ++m) {
-            ++hist[m][legacy_correct_digits(act[m], *exp, NUM_BINS)];
-            double const err = legacy_rel_error(act[m], *exp);
+            ++hist[m][correct_digits(act[m], *exp, NUM_BINS)];
+            double const err = rel_error(act[m], *exp);
             if (!(err <= max_err[m])) max_err[m] = err; /* NaN propagates */
           }
         }
@@ -121,13 +126,16 @@ static void test_f_histogram(void) {
  * eqs. (4), (6) and (9). Scaled errors: |f - F| / |F|,
  * |f' - F'| / (|F'| + |F|), |f'' - F''| / (|F''| + |F'| + |F|). */
 static void test_f_derivatives(void) {
-  hid_t const file = legacy_open_ref_data();
-  if (file < 0) return;
+  hid_t file;
+  if (!refdata_open_or_skip(&file)) return;
   gsize ns, nd, nl;
-  double *spheroids = legacy_read_double(file, "/spheroids", &ns);
-  double *directions = legacy_read_double(file, "/directions", &nd);
-  double *lambdas = legacy_read_double(file, "/lambdas", &nl);
-  H5Fclose(file);
+  double *spheroids = refdata_read_double_all(file, "/spheroids", &ns);
+  g_assert_nonnull(spheroids);
+  double *directions = refdata_read_double_all(file, "/directions", &nd);
+  g_assert_nonnull(directions);
+  double *lambdas = refdata_read_double_all(file, "/lambdas", &nl);
+  g_assert_nonnull(lambdas);
+  refdata_close(file);
   ns /= 6;
   nd /= 3;
   double max_err1[3] = {0, 0, 0}, max_err2[3] = {0, 0, 0};
@@ -221,9 +229,9 @@ static void test_f_bad_input(void) {
 
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
-  g_test_add_func("/legacy/f/histogram_reference_F", test_f_histogram);
-  g_test_add_func("/legacy/f/derivatives_reference_spheroids", test_f_derivatives);
-  g_test_add_func("/legacy/f/spheres", test_f_spheres);
-  g_test_add_func("/legacy/f/bad_input", test_f_bad_input);
+  g_test_add_func("/pw85_legacy_f1_f2/reference/F_histogram", test_f_histogram);
+  g_test_add_func("/pw85_legacy_f1_f2/reference/derivatives", test_f_derivatives);
+  g_test_add_func("/pw85_legacy_f1_f2/spheres", test_f_spheres);
+  g_test_add_func("/pw85_legacy_f1_f2/bad_input", test_f_bad_input);
   return g_test_run();
 }

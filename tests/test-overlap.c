@@ -1,4 +1,4 @@
-/* Tests of pw85_overlap (issue 6): verdicts against the high-precision
+/* Tests of pw85_overlap: verdicts against the high-precision
  * reference data (mu2 computed in exact rational arithmetic from the stored
  * doubles), exact tangency constructed with exactly representable contact,
  * bad input. */
@@ -6,24 +6,24 @@
 #include <math.h>
 #include <pw85.h>
 
-#include "refgroup.h"
+#include "refdata.h"
 #include "testutil.h"
 
 /* Zero wrong verdicts on a reference group; *exact_side counts pairs whose
  * stored mu2 is within 1e-6 of 1 (to show the group exercises the hard
  * cases). */
 static void check_group(const char *name, double min_gap) {
-  ref_group g;
-  if (!ref_group_load(name, &g)) return;
+  RefPairs *g = refdata_pairs_or_skip(name);
+  if (g == NULL) return;
   size_t wrong = 0, hard = 0, used = 0;
-  for (size_t i = 0; i < g.n; i++) {
-    double const mu2 = g.mu2[i];
+  for (size_t i = 0; i < g->n; i++) {
+    double const mu2 = g->mu2[i];
     /* The stored double is the correctly rounded mu2: its side of 1 is the
      * true side unless it rounds to exactly 1. */
     if (mu2 == 1.0 || fabs(mu2 - 1.0) < min_gap) continue;
     used++;
     if (fabs(mu2 - 1.0) < 1e-6) hard++;
-    int const v = pw85_overlap(g.r12 + 3 * i, g.q1 + 6 * i, g.q2 + 6 * i);
+    int const v = pw85_overlap(g->r12 + 3 * i, g->q1 + 6 * i, g->q2 + 6 * i);
     g_assert_cmpint(v, >=, 0);
     if (v != (mu2 < 1.0 ? 1 : 0)) {
       wrong++;
@@ -33,18 +33,13 @@ static void check_group(const char *name, double min_gap) {
   g_test_message("%s: %zu pairs, %zu with |mu2 - 1| < 1e-6, %zu wrong", name, used, hard,
                  wrong);
   g_assert_cmpuint(wrong, ==, 0);
-  g_assert_cmpuint(used, >, g.n / 2);
-  ref_group_free(&g);
+  g_assert_cmpuint(used, >, g->n / 2);
+  refdata_pairs_free(g);
 }
 
 static void test_reference_near_contact(void) { check_group("/near_contact", 0.0); }
 static void test_reference_contact(void) { check_group("/contact", 0.0); }
 static void test_reference_special(void) { check_group("/special", 0.0); }
-
-static void sphere_q(double a, double q[6]) {
-  q[0] = q[3] = q[5] = a * a;
-  q[1] = q[2] = q[4] = 0.0;
-}
 
 /* Spheres of radii 1.5 and 1, centres at distance exactly 2.5 along
  * (3/5, 4/5, 0): r12 = (1.5, 2, 0). Tangent: 0; one ulp closer: 1. */
@@ -252,16 +247,16 @@ static void test_bad_input(void) {
 
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
-  g_test_add_func("/overlap/reference/near_contact", test_reference_near_contact);
-  g_test_add_func("/overlap/reference/contact", test_reference_contact);
-  g_test_add_func("/overlap/reference/special", test_reference_special);
-  g_test_add_func("/overlap/tangent/spheres", test_tangent_spheres);
-  g_test_add_func("/overlap/tangent/spheres-irrational-lambda",
+  g_test_add_func("/pw85_overlap/reference/near_contact", test_reference_near_contact);
+  g_test_add_func("/pw85_overlap/reference/contact", test_reference_contact);
+  g_test_add_func("/pw85_overlap/reference/special", test_reference_special);
+  g_test_add_func("/pw85_overlap/tangent/spheres", test_tangent_spheres);
+  g_test_add_func("/pw85_overlap/tangent/spheres-irrational-lambda",
                   test_tangent_spheres_irrational_lambda);
-  g_test_add_func("/overlap/tangent/aligned-axes", test_tangent_aligned);
-  g_test_add_func("/overlap/random/clear-cases", test_random_clear);
-  g_test_add_func("/overlap/tangent/sweep-scaled", test_tangent_sweep);
-  g_test_add_func("/overlap/random/off-axis-near-contact", test_off_axis);
-  g_test_add_func("/overlap/bad-input", test_bad_input);
+  g_test_add_func("/pw85_overlap/tangent/aligned-axes", test_tangent_aligned);
+  g_test_add_func("/pw85_overlap/random/clear-cases", test_random_clear);
+  g_test_add_func("/pw85_overlap/tangent/sweep-scaled", test_tangent_sweep);
+  g_test_add_func("/pw85_overlap/random/off-axis-near-contact", test_off_axis);
+  g_test_add_func("/pw85_overlap/bad-input", test_bad_input);
   return g_test_run();
 }

@@ -20,7 +20,7 @@ program test_fortran
   integer(c_int) :: status
   integer :: ntest = 0, nfail = 0
   type(pw85_contact_t) :: contact
-  type(pw85_result) :: mres  ! issue 7
+  type(pw85_result) :: mres
   real(c_double) :: centres(3, 2), qs(6, 2)
   integer(c_long_long) :: pairs(2, 2)
   integer(c_int) :: verdicts(2)
@@ -88,7 +88,7 @@ program test_fortran
   call check(status == PW85_ERR_INVALID_ARGUMENT .and. all(ieee_is_nan(out)), &
              'pw85_contact_function: NaN in r12 gives PW85_ERR_INVALID_ARGUMENT')
 
-  ! Issue 6: overlap predicate, contact geometry and a batch call on the
+  ! Overlap predicate, contact geometry and a batch call on the
   ! tutorial pair (mu^2 = 3.36 > 1: apart; with r12 / 2, mu^2 = 3.36 / 4 < 1:
   ! overlapping, since mu^2 is homogeneous of degree 2 in r12).
   r12 = x2 - x1
@@ -114,7 +114,7 @@ program test_fortran
   call check(status == PW85_OK .and. all(verdicts == 0), &
              'pw85_overlap_batch: both orders of the tutorial pair give 0 (status omitted)')
 
-  ! Method-selecting contact function (issue 7): the tutorial pair by the
+  ! Method-selecting contact function: the tutorial pair by the
   ! default method; an unknown method id.
   status = pw85_contact_function_method(r12, q1, q2, PW85_METHOD_DEFAULT, mres)
   call check(status == PW85_OK .and. mres%method == PW85_METHOD_DEFAULT .and. &

@@ -10,7 +10,7 @@ Loads the built library with dlopen and checks, printing TAP:
    relative;
  - r12 = 0 gives mu^2 = 0;
  - NaN in r12 gives PW85_ERR_INVALID_ARGUMENT and a NaN-filled output.
- - pw85_contact_function_method (issue 7) through a ctypes Structure
+ - pw85_contact_function_method through a ctypes Structure
    mirroring pw85_result: the tutorial pair by PW85_METHOD_DEFAULT, and an
    unknown method id.
 Exits with 77 (skipped) when NumPy is missing, or when the build system sets
@@ -37,7 +37,7 @@ RTOL = 1e-12
 
 
 class Pw85Result(ctypes.Structure):
-    """Mirror of struct pw85_result of pw85.h (issue 7)."""
+    """Mirror of struct pw85_result of pw85.h."""
     _fields_ = [("mu2", ctypes.c_double), ("lambda_", ctypes.c_double),
                 ("mu2_error", ctypes.c_double), ("iterations", ctypes.c_int),
                 ("method", ctypes.c_int)]
@@ -128,7 +128,7 @@ def main():
     tap.check(lib.pw85_strerror(invalid) != lib.pw85_strerror(ok_code),
               "pw85_strerror distinguishes PW85_OK and an error")
 
-    # issue 7: method-selecting contact function.
+    # Method-selecting contact function.
     res = Pw85Result()
     default = int(macros["PW85_METHOD_DEFAULT"])
     status = lib.pw85_contact_function_method(x2 - x1, q1, q2, default, ctypes.byref(res))

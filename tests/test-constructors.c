@@ -129,11 +129,11 @@ static void test_ellipsoid_bad_input(void) {
 
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
-  g_test_add_func("/spheroid/tutorial", test_spheroid_tutorial);
-  g_test_add_func("/spheroid/random", test_spheroid_random);
-  g_test_add_func("/spheroid/bad_input", test_spheroid_bad_input);
-  g_test_add_func("/ellipsoid/random", test_ellipsoid_random);
-  g_test_add_func("/ellipsoid/matches_spheroid", test_ellipsoid_matches_spheroid);
-  g_test_add_func("/ellipsoid/bad_input", test_ellipsoid_bad_input);
+  g_test_add_func("/pw85_spheroid/tutorial", test_spheroid_tutorial);
+  g_test_add_func("/pw85_spheroid/random", test_spheroid_random);
+  g_test_add_func("/pw85_spheroid/bad_input", test_spheroid_bad_input);
+  g_test_add_func("/pw85_ellipsoid/random", test_ellipsoid_random);
+  g_test_add_func("/pw85_ellipsoid/matches_spheroid", test_ellipsoid_matches_spheroid);
+  g_test_add_func("/pw85_ellipsoid/bad_input", test_ellipsoid_bad_input);
   return g_test_run();
 }

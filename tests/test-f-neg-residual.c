@@ -1,12 +1,16 @@
 /* pw85_f_neg and pw85__residual (pw85 1.0) against long-double evaluations
  * through the adjugate (tests/testutil.c), a route independent of the
- * library's Cholesky code. */
+ * library's Cholesky code, and pw85_f_neg against the dataset /F of the
+ * reference data (data/README.md: exact rational arithmetic on the stored
+ * doubles, correctly rounded, so the errors measured are the library's
+ * alone; skipped when the file is absent). */
 #include <float.h>
 #include <math.h>
 #include <string.h>
 
 #include <pw85.h>
 
+#include "refdata.h"
 #include "testutil.h"
 
 #define NUM_PAIRS 500
@@ -150,11 +154,116 @@ static void test_residual_bad_input(void) {
   pw85__residual(0.5, r, q, q, NULL);
 }
 
+/* ---- /F: pw85_f_neg --------------------------------------------------- */
+
+/* Histogram of correct digits (pw85 documentation, section 4.3): bin
+ * floor(-log10(relative error)) clamped to [0, 15]; exact results go to the
+ * last bin. */
+#define NUM_BINS 16
+
+static int digits_bin(double err) {
+  if (err == 0.0) return NUM_BINS - 1;
+  double const d = floor(-log10(err));
+  if (!(d > 0.0)) return 0; /* also NaN */
+  if (d >= NUM_BINS - 1) return NUM_BINS - 1;
+  return (int)d;
+}
+
+static void test_f_neg_reference(void) {
+  hid_t file;
+  if (!refdata_open_or_skip(&file)) return;
+  hsize_t ds[2], dd[2], dl[1], df[4];
+  double *spheroids = refdata_read_double(file, "/spheroids", 2, ds);
+  double *directions = refdata_read_double(file, "/directions", 2, dd);
+  double *lambdas = refdata_read_double(file, "/lambdas", 1, dl);
+  double *F = refdata_read_double(file, "/F", 4, df);
+  refdata_close(file);
+  g_assert_nonnull(spheroids);
+  g_assert_nonnull(directions);
+  g_assert_nonnull(lambdas);
+  g_assert_nonnull(F);
+  g_assert_cmpuint(ds[1], ==, PW85_SYM);
+  g_assert_cmpuint(dd[1], ==, PW85_DIM);
+  g_assert_cmpuint(df[0], ==, ds[0]);
+  g_assert_cmpuint(df[1], ==, ds[0]);
+  g_assert_cmpuint(df[2], ==, dd[0]);
+  g_assert_cmpuint(df[3], ==, dl[0]);
+  g_assert_cmpuint(df[0] * df[1] * df[2] * df[3], ==, 108 * 108 * 12 * 11);
+
+  guint64 hist[NUM_BINS] = {0};
+  guint64 n = 0, zeros = 0, above = 0;
+  double max_err = 0.0;
+  gsize worst = 0;
+  double params[PW85_DIM + 2 * PW85_SYM];
+  const double *exp = F;
+  for (hsize_t i1 = 0; i1 < df[0]; i1++) {
+    memcpy(params + PW85_DIM, spheroids + PW85_SYM * i1, sizeof(double) * PW85_SYM);
+    for (hsize_t i2 = 0; i2 < df[1]; i2++) {
+      memcpy(params + PW85_DIM + PW85_SYM, spheroids + PW85_SYM * i2,
+             sizeof(double) * PW85_SYM);
+      for (hsize_t k = 0; k < df[2]; k++) {
+        memcpy(params, directions + PW85_DIM * k, sizeof(double) * PW85_DIM);
+        for (hsize_t j = 0; j < df[3]; j++, exp++, n++) {
+          double const act = -pw85_f_neg(lambdas[j], params);
+          double err;
+          if (*exp == 0.0) {
+            /* lambda = 0 or 1: f vanishes identically, exactly. */
+            zeros++;
+            err = act == 0.0 ? 0.0 : INFINITY;
+          } else {
+            err = isnan(act) ? INFINITY : rel_error(act, *exp);
+          }
+          if (err > max_err) max_err = err, worst = (gsize)(exp - F);
+          if (err > 1e-10) above++;
+          hist[digits_bin(err)]++;
+        }
+      }
+    }
+  }
+  g_assert_cmpuint(n, ==, 108 * 108 * 12 * 11);
+
+  /* The histogram, as a message and as CSV next to the test program. */
+  GString *line = g_string_new("");
+  GString *csv = g_string_new("digits,count,percent\n");
+  for (int b = 0; b < NUM_BINS; b++) {
+    double const pc = 100.0 * (double)hist[b] / (double)n;
+    g_string_append_printf(line, " %d:%.2f%%", b, pc);
+    g_string_append_printf(csv, "%d,%" G_GUINT64_FORMAT ",%.4f\n", b, hist[b], pc);
+  }
+  gsize const per_entry = df[3], per_dir = df[2] * per_entry, per_i2 = df[1] * per_dir;
+  g_test_message("/F: %" G_GUINT64_FORMAT " entries (%" G_GUINT64_FORMAT
+                 " exact zeros), max rel. error %.3g at [%zu,%zu,%zu,%zu], %" G_GUINT64_FORMAT
+                 " above 1e-10",
+                 n, zeros, max_err, worst / per_i2, (worst % per_i2) / per_dir,
+                 (worst % per_dir) / per_entry, worst % per_entry, above);
+  g_test_message("/F: correct digits (bin: percent of entries; bin 15 includes exact):%s",
+                 line->str);
+  char *csv_path = g_test_build_filename(G_TEST_BUILT, "refdata-f-neg-histogram.csv", NULL);
+  GError *error = NULL;
+  if (g_file_set_contents(csv_path, csv->str, -1, &error))
+    g_test_message("/F: histogram written to %s", csv_path);
+  else {
+    g_test_message("/F: could not write %s: %s", csv_path, error->message);
+    g_clear_error(&error);
+  }
+  g_free(csv_path);
+  g_string_free(line, TRUE);
+  g_string_free(csv, TRUE);
+
+  g_assert_cmpuint(above, ==, 0);
+  g_assert_cmpfloat(max_err, <=, 1e-10);
+  g_free(spheroids);
+  g_free(directions);
+  g_free(lambdas);
+  g_free(F);
+}
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
-  g_test_add_func("/f_neg/random", test_f_neg_random);
-  g_test_add_func("/f_neg/bad_input", test_f_neg_bad_input);
-  g_test_add_func("/residual/random", test_residual_random);
-  g_test_add_func("/residual/bad_input", test_residual_bad_input);
+  g_test_add_func("/pw85_f_neg/random", test_f_neg_random);
+  g_test_add_func("/pw85_f_neg/bad_input", test_f_neg_bad_input);
+  g_test_add_func("/pw85_f_neg/reference/F", test_f_neg_reference);
+  g_test_add_func("/pw85__residual/random", test_residual_random);
+  g_test_add_func("/pw85__residual/bad_input", test_residual_bad_input);
   return g_test_run();
 }
