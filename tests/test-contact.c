@@ -98,16 +98,15 @@ static void exact_geometry(const double r[3], const double q1[6], const double q
  *           is within the n bound of the exact normal).
  * x0, n, lambda and surf are within ~1 ulp: the target 1e-12 holds in
  * every class; pt and opp are limited by the rounding of x0 to double.
- * x0 and n get 2 ulps (4.5e-16): the kernels without FMA (Dekker products,
- * no contraction) differ from the FMA ones by up to 1 ulp. pt in class 1
- * gets twice its measured maximum (1.0e-14; 8.1e-15 before DEFAULT's start
- * changed and moved x0 of one pair by an ulp): it is about twice the floor
- * of x0* rounded to double (4.8e-15). pt in class 2 likewise: 4.3e-13 since
- * the Aitken step of the start (2.8e-13 before; its floor 2.7e-13), with x0,
- * n, lambda and surf unchanged. */
+ * x0, n and lambda get 2 ulps (4.5e-16 for x0 and n, DBL_EPSILON for lambda
+ * in [0, 1]): the double-double kernels without FMA (Dekker products, no
+ * contraction; the build with isa_dispatch=false) differ from the FMA ones
+ * by up to 1 ulp (lambda: 1.02e-16 measured without FMA). pt gets about
+ * twice its measured maximum, which is about twice the floor set by x0*
+ * rounded to double (4.8e-15 in class 1, 2.7e-13 in class 2). */
 static const double kTolX0[4] = {4.5e-16, 4.5e-16, 4.5e-16, 1.5e-15};
 static const double kTolN[4] = {4.5e-16, 4.5e-16, 4.5e-16, 4.5e-16};
-static const double kTolLambda[4] = {1e-16, 1e-16, 1e-16, 1e-16};
+static const double kTolLambda[4] = {DBL_EPSILON, DBL_EPSILON, DBL_EPSILON, DBL_EPSILON};
 static const double kTolSurf[4] = {2.5e-16, 2.5e-16, 2.5e-16, 2.5e-16};
 static const double kTolPoint[4] = {1e-15, 2e-14, 8e-13, 2e-11};
 static const double kTolOpp[4] = {1e-15, 3e-13, 3e-9, 3e-6};

@@ -158,54 +158,46 @@ typedef struct {
  * case scales). The parameter is the aspect ratio k for aspect, identical,
  * coaxial and needle_disc, the radii ratio for spheres, the angle for
  * parallel_needles and the scale for scales; min_param 0 means the section
- * gives no region for the case. Where the measurements of this test differ
- * from that section, the entry follows the measurement and says so
- * ("differs"): two counts missing from the table (BRENT and RATIONAL flag 1
- * and 2 of the 48 parallel_needles pairs) and four regions wider than it
- * states (BRENT spheres, NEWTON, RATIONAL and ZHENG identical). */
+ * gives no region for the case. */
 static const Method methods[] = {
     /* DEFAULT: "nothing in these sweeps", 0 flagged of 669. */
     {"default", PW85_METHOD_DEFAULT, 1e-14, {{NULL, 0, 0, 0}}},
-    /* BRENT: aspect >= 1e3; identical needles/discs >= 1e3; spheres 1e-6 vs
-     * 1e6; coaxial and needle_disc at 1e6. */
+    /* BRENT: aspect >= 1e3; identical needles/discs >= 1e3; spheres of radii
+     * ratio >= 1e6; coaxial and needle_disc at 1e6; parallel needles. */
     {"brent",
      PW85_METHOD_BRENT,
      1e-10,
      {{"aspect", 55, 1e3, 0},
       {"identical", 31, 1e3, 0},
-      /* differs: "1e-6 vs 1e6"; radii 1 and 1e-6 are flagged too (6 of 18) */
       {"spheres", 18, 1e6, 1},
       {"coaxial", 5, 1e6, 0},
       {"needle_disc", 6, 1e6, 0},
       {"scales", 4, 0, 0},
-      {"parallel_needles", 1, 0, 0}, /* differs: not in the table */
+      {"parallel_needles", 1, 0, 0},
       {NULL, 0, 0, 0}}},
-    /* NEWTON: aspect >= 1e2 (random orientations), identical >= 1e3. */
+    /* NEWTON: aspect >= 1e2 (random orientations), identical >= 1e2. */
     {"newton",
      PW85_METHOD_NEWTON,
      1e-12,
      {{"aspect", 81, 1e2, 0},
-      /* differs: ">= 1e3"; 7 of the 39 are at k = 1e2 */
       {"identical", 39, 1e2, 0},
       {"parallel_needles", 2, 0, 0},
       {"scales", 15, 0, 0},
       {NULL, 0, 0, 0}}},
-    /* RATIONAL: aspect >= 1e2, identical >= 1e2. */
+    /* RATIONAL: aspect >= 1e2, identical >= 30, parallel needles. */
     {"rational",
      PW85_METHOD_RATIONAL,
      1e-12,
      {{"aspect", 88, 1e2, 0},
-      /* differs: ">= 1e2"; 3 of the 42 are at k = 30 */
       {"identical", 42, 30, 0},
       {"scales", 23, 0, 0},
-      {"parallel_needles", 2, 0, 0}, /* differs: not in the table */
+      {"parallel_needles", 2, 0, 0},
       {NULL, 0, 0, 0}}},
-    /* ZHENG: aspect >= 1e4 (docs/dca.md). */
+    /* ZHENG: aspect >= 1e4, identical >= 1e3 (docs/dca.md). */
     {"zheng",
      PW85_METHOD_ZHENG,
      1e-9,
      {{"aspect", 32, 1e4, 0},
-      /* differs: ">= 1e4"; 1 of the 25 is at k = 1e3 */
       {"identical", 25, 1e3, 0},
       {"needle_disc", 3, 1e4, 0},
       {"parallel_needles", 1, 0, 0},
