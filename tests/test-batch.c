@@ -175,17 +175,18 @@ static void random_box(GRand *rng, double tilt, double box[6]) {
   for (int d = 3; d < 6; d++) box[d] = g_rand_double_range(rng, -tilt, tilt);
 }
 
-/* The wrap the header documents (HOOMD's Box::minImage: z, y, x; ties away
- * from zero), written out here independently of the library's code. */
+/* The wrap the header documents (HOOMD's Box::minImage: z, y, x, each by
+ * the nearest integer to the coordinate times 1 / L, ties away from zero),
+ * written out here independently of the library's code. */
 static void wrap(const double box[6], double r[3]) {
-  double iz = round(r[2] / box[2]);
+  double iz = round(r[2] * (1.0 / box[2]));
   r[2] -= box[2] * iz;
   r[1] -= box[5] * box[2] * iz;
   r[0] -= box[4] * box[2] * iz;
-  double iy = round(r[1] / box[1]);
+  double iy = round(r[1] * (1.0 / box[1]));
   r[1] -= box[1] * iy;
   r[0] -= box[3] * box[1] * iy;
-  r[0] -= box[0] * round(r[0] / box[0]);
+  r[0] -= box[0] * round(r[0] * (1.0 / box[0]));
 }
 
 /* Scene of N ellipsoids, semi-axes in [0.05, 0.35] (bounding spheres small

@@ -252,11 +252,13 @@ inline bool valid_count(long long m, int nthreads) noexcept { return m > 0 && nt
 struct Box {
   bool periodic = false;
   double l[3] = {0, 0, 0};
+  double inv_l[3] = {0, 0, 0};  // 1 / l, rounded
   double xy_ly = 0, xz_lz = 0, yz_lz = 0;  // the tilt offsets of a2 and a3
   // Largest admissible sum of the two bounding-sphere radii of a pair:
   // min(Lx, Ly, Lz) / 2, less a relative 1e-9 for the rounding of the wrap
   // and of the radius bounds (docs/batch.md).
   double max_reach = 0;
+  double max_reach2_half = 0;  // max_reach^2 / 2
 };
 
 // A NULL box: no periodicity. Else lengths finite and > 0, tilts finite,
@@ -267,41 +269,72 @@ bool make_box(double const *box, Box &b) noexcept {
     if (!std::isfinite(box[d])) return false;
   if (!(box[0] > 0.0 && box[1] > 0.0 && box[2] > 0.0)) return false;
   b.periodic = true;
-  for (int d = 0; d < 3; ++d) b.l[d] = box[d];
+  for (int d = 0; d < 3; ++d) {
+    b.l[d] = box[d];
+    b.inv_l[d] = 1.0 / box[d];
+  }
   b.xy_ly = box[3] * box[1];
   b.xz_lz = box[4] * box[2];
   b.yz_lz = box[5] * box[2];
   if (!std::isfinite(b.xy_ly) || !std::isfinite(b.xz_lz) || !std::isfinite(b.yz_lz)) return false;
   double const lmin = std::fmin(box[0], std::fmin(box[1], box[2]));
   b.max_reach = 0.5 * lmin * (1.0 - 1e-9);
+  b.max_reach2_half = 0.5 * b.max_reach * b.max_reach;
   return true;
 }
 
+// std::round (nearest integer, ties away from zero) without the library
+// call that baseline x86-64 (no SSE4.1 roundsd) makes of it: truncation by
+// conversion, then the exact remainder x - t decides. |x| >= 2^52, NaN:
+// x is returned, as std::round does.
+inline double round_away(double x) noexcept {
+  if (!(std::fabs(x) < 0x1p52)) return x;
+  double t = static_cast<double>(static_cast<long long>(x));
+  double const rem = x - t;
+  if (rem >= 0.5) t += 1.0;
+  else if (rem <= -0.5) t -= 1.0;
+  return t;
+}
+
 // The standard triclinic wrap (HOOMD's Box::minImage): z first, then y,
-// then x, each by the nearest integer number of lattice vectors (ties away
-// from zero). The result lies in the brick |x| <= Lx/2, |y| <= Ly/2,
-// |z| <= Lz/2, a fundamental domain of the lattice.
+// then x, each by the nearest integer (ties away from zero) to the
+// coordinate times the rounded 1 / L. The result lies in the brick
+// |x| <= Lx/2, |y| <= Ly/2, |z| <= Lz/2 (up to roundings), a fundamental
+// domain of the lattice.
 inline void min_image(Box const &b, double r[3]) noexcept {
-  double const iz = std::round(r[2] / b.l[2]);
+  double const iz = round_away(r[2] * b.inv_l[2]);
   r[2] -= b.l[2] * iz;
   r[1] -= b.yz_lz * iz;
   r[0] -= b.xz_lz * iz;
-  double const iy = std::round(r[1] / b.l[1]);
+  double const iy = round_away(r[1] * b.inv_l[1]);
   r[1] -= b.l[1] * iy;
   r[0] -= b.xy_ly * iy;
-  double const ix = std::round(r[0] / b.l[0]);
+  double const ix = round_away(r[0] * b.inv_l[0]);
   r[0] -= b.l[0] * ix;
 }
 
-// Upper bound of the largest semi-axis of the ellipsoid of q: the square root
-// of the smaller of two upper bounds of the largest eigenvalue of Q, the
-// trace and the largest Gershgorin row sum (both of |entries|). NaN for
-// non-finite entries.
-inline double reach(double const *q) noexcept {
+// Upper bound of the largest eigenvalue of Q, the square of the largest
+// semi-axis of its ellipsoid: the smaller of the trace and the largest
+// Gershgorin row sum (both of |entries|). (Plain comparisons, not
+// std::fmax, which is a library call here; a NaN entry may give any value:
+// such a pair fails with PW85_ERR_INVALID_ARGUMENT either way.)
+inline double reach2(double const *q) noexcept {
   double const a00 = std::fabs(q[0]), a01 = std::fabs(q[1]), a02 = std::fabs(q[2]);
   double const a11 = std::fabs(q[3]), a12 = std::fabs(q[4]), a22 = std::fabs(q[5]);
-  double const g = std::fmax(a00 + a01 + a02, std::fmax(a01 + a11 + a12, a02 + a12 + a22));
-  return std::sqrt(std::fmin(g, a00 + a11 + a22));
+  double const r0 = a00 + a01 + a02, r1 = a01 + a11 + a12, r2 = a02 + a12 + a22;
+  double const trace = a00 + a11 + a22;
+  double g = r0 > r1 ? r0 : r1;
+  g = g > r2 ? g : r2;
+  return trace < g ? trace : g;
+}
+
+// Whether the bounding spheres of q1 and q2 (radii sqrt(reach2)) have radii
+// summing to more than box.max_reach. Cheap test first: (a + b)^2 <=
+// 2 (a^2 + b^2).
+inline bool too_large(Box const &box, double const *q1, double const *q2) noexcept {
+  double const g1 = reach2(q1), g2 = reach2(q2);
+  if (g1 + g2 <= box.max_reach2_half) return false;
+  return std::sqrt(g1) + std::sqrt(g2) > box.max_reach;
 }
 
 // r12 of pair k of a scene: c_j - c_i, or its minimum image in the box.
@@ -314,7 +347,7 @@ inline int scene_r12(long long n, double const *centres, double const *q, Box co
                      long long &j) noexcept {
   if (!pair_r12(n, centres, pairs, k, r12, i, j)) return PW85_ERR_INVALID_ARGUMENT;
   if (!box.periodic) return PW85_OK;
-  if (reach(q + 6 * i) + reach(q + 6 * j) > box.max_reach) return PW85_ERR_INVALID_ARGUMENT;
+  if (too_large(box, q + 6 * i, q + 6 * j)) return PW85_ERR_INVALID_ARGUMENT;
   if (std::isfinite(r12[0]) && std::isfinite(r12[1]) && std::isfinite(r12[2])) min_image(box, r12);
   return PW85_OK;
 }
