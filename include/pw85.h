@@ -388,9 +388,9 @@ PW85_API int pw85_contact(double const r12[PW85_DIM], double const q1[PW85_SYM],
  * header needs no other header and Fortran passes integer(c_long_long).
  * The recommended calls are pw85_overlap_pairs, pw85_contact_function_pairs,
  * pw85_contact_pairs and pw85_scene_* further below; the three *_batch
- * calls are kept with their pw85 2.0 behaviour (pw85_contact_function_batch
+ * calls keep their signatures and behaviour (ABI). pw85_contact_function_batch
  * runs pw85 1.0's Brent iteration, several times slower than
- * PW85_METHOD_DEFAULT, docs/batch.md). */
+ * PW85_METHOD_DEFAULT (docs/batch.md). */
 
 /* Overlap verdicts of m pairs: overlap[k] = pw85_overlap() of pair k (1, 0,
  * or a negative status), status[k] = PW85_OK or that negative status.
