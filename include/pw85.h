@@ -31,13 +31,14 @@
  * step declines. Its results there may differ in the last bits from those of
  * another CPU, both within the documented accuracy of the method. This
  * concerns pw85_contact_function_method() and pw85_dca() with
- * PW85_METHOD_DEFAULT, pw85_contact() and pw85_contact_batch(). Likewise,
+ * PW85_METHOD_DEFAULT, pw85_contact() and the batch calls built on them
+ * (pw85_contact_batch(), pw85_contact_pairs(), ...). Likewise,
  * the double-double evaluations that the contact-function methods and
  * pw85_contact() use in their last steps run with a fused multiply-add on
  * x86 CPUs that have one, and may differ by an ulp from a CPU without.
  * Building with isa_dispatch=false gives the portable results everywhere.
- * The verdicts of pw85_overlap() and pw85_overlap_batch() are identical on
- * every CPU (they are exact). The number of threads of a batch call never
+ * The verdicts of pw85_overlap() and of the overlap batch calls are
+ * identical on every CPU (they are exact). The number of threads of a batch call never
  * changes any result.
  */
 #ifndef PW85_H
@@ -378,11 +379,18 @@ PW85_API int pw85_contact(double const r12[PW85_DIM], double const q1[PW85_SYM],
  * m index pairs (pairs[2k], pairs[2k+1]) = (i, j), and pair k is computed
  * with r12 = c_j - c_i (rounded to double) exactly as the one-pair function
  * does, so the results are identical to it and independent of the number of
- * threads. nthreads: number of OpenMP threads (0: the OpenMP default; the
- * process-wide OpenMP settings are never changed; ignored without OpenMP).
- * status (may be NULL) receives the status of each pair. Indices and counts
- * are long long (64-bit), so that the header needs no other header and
- * Fortran passes integer(c_long_long). */
+ * threads. nthreads: number of OpenMP threads requested (0: the OpenMP
+ * default); every batch call of this header runs on at most
+ * min(nthreads, omp_get_num_procs(), m) threads, so any nthreads >= 0 is
+ * safe (INT_MAX included); the process-wide OpenMP settings are never
+ * changed; ignored without OpenMP. status (may be NULL) receives the status
+ * of each pair. Indices and counts are long long (64-bit), so that the
+ * header needs no other header and Fortran passes integer(c_long_long).
+ * The recommended calls are pw85_overlap_pairs, pw85_contact_function_pairs,
+ * pw85_contact_pairs and pw85_scene_* further below; the three *_batch
+ * calls keep their signatures and behaviour (ABI). pw85_contact_function_batch
+ * runs pw85 1.0's Brent iteration, several times slower than
+ * PW85_METHOD_DEFAULT (docs/batch.md). */
 
 /* Overlap verdicts of m pairs: overlap[k] = pw85_overlap() of pair k (1, 0,
  * or a negative status), status[k] = PW85_OK or that negative status.
@@ -420,6 +428,74 @@ PW85_API int pw85_contact_function_batch(long long n, double const *centres,
 PW85_API int pw85_contact_batch(long long n, double const *centres, double const *q,
                                 long long m, long long const *pairs, pw85_contact_t *c,
                                 int *status, int nthreads);
+
+/* ---- Batch calls over per-pair arrays and periodic scenes -----------------
+ * Common conventions (docs/batch.md): each pair is computed by the one-pair
+ * function, so its result is bitwise that of the one-pair call, whatever the
+ * number of threads, its position k and the other pairs. status (may be
+ * NULL) receives each pair's status (PW85_OK or negative). The return value
+ * is PW85_OK when every pair succeeded (m = 0 included, a no-op), else the
+ * status of the lowest failing k. PW85_ERR_INVALID_ARGUMENT with nothing
+ * written: m < 0, or m > 0 and a required pointer NULL, nthreads < 0 (and
+ * for the scene calls n < 0 or an invalid box). A NaN or infinite value or
+ * a matrix that is not positive definite fails that pair only. nthreads as
+ * for the *_batch calls above (clamped to the CPUs and to m).
+ *
+ * Per-pair arrays (pw85_*_pairs): pair k is r12[3k..3k+2], q1[6k..6k+5],
+ * q2[6k..6k+5]. */
+
+/* overlap[k] = pw85_overlap() of pair k (1, 0 or a negative status). */
+PW85_API int pw85_overlap_pairs(long long m, double const *r12, double const *q1,
+                                double const *q2, int *overlap, int *status, int nthreads);
+
+/* res[k] = pw85_contact_function_method() of pair k by method (any
+ * PW85_METHOD_*; an unknown method: PW85_ERR_UNKNOWN_METHOD, nothing
+ * written). */
+PW85_API int pw85_contact_function_pairs(long long m, double const *r12, double const *q1,
+                                         double const *q2, int method, pw85_result *res,
+                                         int *status, int nthreads);
+
+/* c[k] = pw85_contact() of pair k. */
+PW85_API int pw85_contact_pairs(long long m, double const *r12, double const *q1,
+                                double const *q2, pw85_contact_t *c, int *status,
+                                int nthreads);
+
+/* Scenes (pw85_scene_*): n ellipsoids, centre i at centres[3i..3i+2], matrix
+ * i at q[6i..6i+5]; pair k is (i, j) = (pairs[2k], pairs[2k+1]), computed
+ * with r12 = c_j - c_i. box (may be NULL: no periodicity) is a periodic box
+ * in the HOOMD/GSD convention {Lx, Ly, Lz, xy, xz, yz}: lattice vectors
+ * (Lx, 0, 0), (xy Ly, Ly, 0), (xz Lz, yz Lz, Lz). With a box, r12 is the
+ * image of c_j - c_i given by the triclinic wrap of HOOMD's Box::minImage
+ * (z, then y, then x, each by the nearest integer number of lattice vectors,
+ * ties away from zero), which lies in |x| <= Lx/2, |y| <= Ly/2,
+ * |z| <= Lz/2. It is the nearest image whenever the nearest image is
+ * shorter than min(Lx, Ly, Lz)/2, hence for every pair that overlaps or
+ * touches in some image; for longer separations in a tilted box it may be
+ * another image (docs/batch.md). To keep that guarantee, a pair whose
+ * bounding spheres (radius: square root of the smaller of the trace and the
+ * largest Gershgorin row sum of |Q|) have radii summing to more than
+ * min(Lx, Ly, Lz)/2 (less a relative 1e-9) fails with
+ * PW85_ERR_INVALID_ARGUMENT, as does an index < 0 or >= n; that pair's
+ * outputs are then NaN (overlap[k] the status). The box is invalid (call
+ * error) when a length is not finite and > 0, a tilt is not finite, or a
+ * tilt times its length overflows. */
+
+/* overlap[k] = pw85_overlap() of pair k. */
+PW85_API int pw85_scene_overlap(long long n, double const *centres, double const *q,
+                                double const box[6], long long m, long long const *pairs,
+                                int *overlap, int *status, int nthreads);
+
+/* res[k] = pw85_contact_function_method() of pair k by method (unknown
+ * method: PW85_ERR_UNKNOWN_METHOD, nothing written). */
+PW85_API int pw85_scene_contact_function(long long n, double const *centres, double const *q,
+                                         double const box[6], long long m,
+                                         long long const *pairs, int method, pw85_result *res,
+                                         int *status, int nthreads);
+
+/* c[k] = pw85_contact() of pair k. */
+PW85_API int pw85_scene_contact(long long n, double const *centres, double const *q,
+                                double const box[6], long long m, long long const *pairs,
+                                pw85_contact_t *c, int *status, int nthreads);
 
 PW85_END_DECLS
 

@@ -1,6 +1,10 @@
 /* Tests of the batch calls (docs/batch.md): results identical
  * (bitwise) to the one-pair functions, independent of the number of threads
- * (1 and 2, explicit nthreads argument), per-pair status, bad input. */
+ * (1 and 2, explicit nthreads argument), of the order of the pairs and of
+ * their neighbours; per-pair status, bad input; nthreads far beyond the
+ * CPUs (100000, INT_MAX) gives the results of nthreads = 1; the minimum
+ * image of the periodic scenes against a brute-force search over images. */
+#include <limits.h>
 #include <math.h>
 #include <pw85.h>
 #include <string.h>
@@ -163,6 +167,446 @@ static void test_contact_batch_bad_input(void) {
                   PW85_ERR_INVALID_ARGUMENT);
 }
 
+/* ---- Per-pair arrays and periodic scenes -------------------------------- */
+
+/* A periodic test box: lengths in [1.5, 3], tilts uniform in [-tilt, tilt]. */
+static void random_box(GRand *rng, double tilt, double box[6]) {
+  for (int d = 0; d < 3; d++) box[d] = g_rand_double_range(rng, 1.5, 3.0);
+  for (int d = 3; d < 6; d++) box[d] = g_rand_double_range(rng, -tilt, tilt);
+}
+
+/* The wrap the header documents (HOOMD's Box::minImage: z, y, x, each by
+ * the nearest integer to the coordinate times 1 / L, ties away from zero),
+ * written out here independently of the library's code. */
+static void wrap(const double box[6], double r[3]) {
+  double iz = round(r[2] * (1.0 / box[2]));
+  r[2] -= box[2] * iz;
+  r[1] -= box[5] * box[2] * iz;
+  r[0] -= box[4] * box[2] * iz;
+  double iy = round(r[1] * (1.0 / box[1]));
+  r[1] -= box[1] * iy;
+  r[0] -= box[3] * box[1] * iy;
+  r[0] -= box[0] * round(r[0] * (1.0 / box[0]));
+}
+
+/* Scene of N ellipsoids, semi-axes in [0.05, 0.35] (bounding spheres small
+ * enough for every box of random_box), centres in [-3, 6]^3 (outside the
+ * box too), every odd ellipsoid near the even one before it; M pairs (odd k:
+ * such neighbours), and the same pairs as per-pair arrays (r12 = c_j - c_i,
+ * not wrapped). */
+typedef struct {
+  double c[3 * N], q[6 * N];
+  long long pairs[2 * M];
+  double r12[3 * M], q1[6 * M], q2[6 * M];
+} pair_arrays;
+
+static void make_pair_arrays(pair_arrays *s, guint32 seed) {
+  GRand *rng = g_rand_new_with_seed(seed);
+  for (int i = 0; i < N; i++) {
+    double rad[3], ax[9];
+    random_radii(rng, 0.05, 0.35, rad);
+    random_axes(rng, ax);
+    make_q(rad, ax, s->q + 6 * i);
+    for (int d = 0; d < 3; d++)
+      s->c[3 * i + d] = i % 2 ? s->c[3 * (i - 1) + d] + g_rand_double_range(rng, -0.4, 0.4)
+                              : g_rand_double_range(rng, -3.0, 6.0);
+  }
+  for (int k = 0; k < M; k++) {
+    long long i = g_rand_int_range(rng, 0, N), j;
+    if (k % 2) j = i ^ 1;
+    else do j = g_rand_int_range(rng, 0, N); while (j == i);
+    s->pairs[2 * k] = i;
+    s->pairs[2 * k + 1] = j;
+    for (int d = 0; d < 3; d++) s->r12[3 * k + d] = s->c[3 * j + d] - s->c[3 * i + d];
+    memcpy(s->q1 + 6 * k, s->q + 6 * i, 6 * sizeof(double));
+    memcpy(s->q2 + 6 * k, s->q + 6 * j, 6 * sizeof(double));
+  }
+  g_rand_free(rng);
+}
+
+/* Bad pairs among good ones. Per-pair arrays: a NaN in r12 at k = 7, a
+ * q2 not positive definite at k = 3, an infinite q1 at k = 11. Scene: an
+ * index out of range at k = 5, a NaN centre (every pair of ellipsoid
+ * pairs[18] fails), a matrix not positive definite (ellipsoid pairs[26]). */
+static void spoil(pair_arrays *s) {
+  s->r12[3 * 7 + 1] = NAN;
+  s->q2[6 * 3 + 0] = -1.0;
+  s->q1[6 * 11 + 5] = INFINITY;
+  s->pairs[2 * 5 + 1] = N;
+  s->c[3 * s->pairs[18] + 2] = NAN;
+  s->q[6 * s->pairs[26] + 3] = -0.01;
+}
+
+/* The arrays with pair k moved to perm[k]. */
+static void permute(const pair_arrays *s, const int *perm, pair_arrays *t) {
+  memcpy(t->c, s->c, sizeof s->c);
+  memcpy(t->q, s->q, sizeof s->q);
+  for (int k = 0; k < M; k++) {
+    int p = perm[k];
+    memcpy(t->pairs + 2 * p, s->pairs + 2 * k, 2 * sizeof(long long));
+    memcpy(t->r12 + 3 * p, s->r12 + 3 * k, 3 * sizeof(double));
+    memcpy(t->q1 + 6 * p, s->q1 + 6 * k, 6 * sizeof(double));
+    memcpy(t->q2 + 6 * p, s->q2 + 6 * k, 6 * sizeof(double));
+  }
+}
+
+/* The new calls: which = 0 overlap, 1 contact function (method), 2 contact;
+ * scene = 0: pw85_*_pairs, 1: pw85_scene_* (box may be NULL). */
+static int call_new(int which, int scene, const pair_arrays *s, const double *box, int method,
+                    void *out, int *st, int nthreads) {
+  if (!scene) {
+    if (which == 0) return pw85_overlap_pairs(M, s->r12, s->q1, s->q2, out, st, nthreads);
+    if (which == 1)
+      return pw85_contact_function_pairs(M, s->r12, s->q1, s->q2, method, out, st, nthreads);
+    return pw85_contact_pairs(M, s->r12, s->q1, s->q2, out, st, nthreads);
+  }
+  if (which == 0) return pw85_scene_overlap(N, s->c, s->q, box, M, s->pairs, out, st, nthreads);
+  if (which == 1)
+    return pw85_scene_contact_function(N, s->c, s->q, box, M, s->pairs, method, out, st,
+                                       nthreads);
+  return pw85_scene_contact(N, s->c, s->q, box, M, s->pairs, out, st, nthreads);
+}
+
+static size_t out_size(int which) {
+  return which == 0 ? sizeof(int) : which == 1 ? sizeof(pw85_result) : sizeof(pw85_contact_t);
+}
+
+/* Expected output and status of pair k by the one-pair function (an index
+ * out of range: the one-pair function on a NaN r12, which fails with
+ * PW85_ERR_INVALID_ARGUMENT and the same NaN outputs). */
+static int expect_one(int which, int scene, const pair_arrays *s, const double *box, int method,
+                      int k, void *out) {
+  double r[3] = {NAN, 0.0, 0.0};
+  const double *q1 = s->q1 + 6 * k, *q2 = s->q2 + 6 * k;
+  if (!scene) {
+    memcpy(r, s->r12 + 3 * k, sizeof r);
+  } else {
+    long long i = s->pairs[2 * k], j = s->pairs[2 * k + 1];
+    q1 = s->q;
+    q2 = s->q;
+    if (i >= 0 && i < N && j >= 0 && j < N) {
+      for (int d = 0; d < 3; d++) r[d] = s->c[3 * j + d] - s->c[3 * i + d];
+      if (box && isfinite(r[0]) && isfinite(r[1]) && isfinite(r[2])) wrap(box, r);
+      q1 = s->q + 6 * i;
+      q2 = s->q + 6 * j;
+    }
+  }
+  if (which == 0) {
+    int v = pw85_overlap(r, q1, q2);
+    *(int *)out = v;
+    return v < 0 ? v : PW85_OK;
+  }
+  if (which == 1) return pw85_contact_function_method(r, q1, q2, method, out);
+  return pw85_contact(r, q1, q2, out);
+}
+
+typedef struct {
+  int which, scene, periodic;
+} new_case;
+
+static const new_case new_cases[9] = {
+  {0, 0, 0}, {1, 0, 0}, {2, 0, 0},  /* pw85_*_pairs */
+  {0, 1, 0}, {1, 1, 0}, {2, 1, 0},  /* pw85_scene_*, box NULL */
+  {0, 1, 1}, {1, 1, 1}, {2, 1, 1},  /* pw85_scene_*, triclinic box */
+};
+
+static unsigned char big_out[4][M * sizeof(pw85_contact_t)];
+static int big_st[4][M];
+
+/* Every pair of a new call bitwise equal to its one-pair call, with 1 and 2
+ * threads, in the original and in a shuffled order (every method for the
+ * contact function); the bad pairs of spoil() fail alone; the call returns
+ * the status of the lowest failing k. */
+static void test_new_against_one_pair(gconstpointer data) {
+  const new_case *tc = data;
+  static pair_arrays s, t;
+  static int perm[M];
+  GRand *rng = g_rand_new_with_seed(41 + tc->which);
+  make_pair_arrays(&s, 21 + tc->which);
+  spoil(&s);
+  for (int k = 0; k < M; k++) perm[k] = k;
+  for (int k = M - 1; k > 0; k--) {
+    int j = g_rand_int_range(rng, 0, k + 1), x = perm[k];
+    perm[k] = perm[j];
+    perm[j] = x;
+  }
+  permute(&s, perm, &t);
+  double box[6];
+  random_box(rng, 0.5, box);
+  const double *b = tc->periodic ? box : NULL;
+  size_t const sz = out_size(tc->which);
+  unsigned char *exp = big_out[0], *out = big_out[1];
+  int *exp_st = big_st[0], *st = big_st[1];
+  for (int method = 0; method < (tc->which == 1 ? 5 : 1); method++) {
+    /* first: lowest failing k in the original order; first_perm: the pair
+     * that lands lowest among the failing ones in the shuffled order */
+    int first = M, first_perm = M, n_ok = 0, n_overlap = 0;
+    for (int k = 0; k < M; k++) {
+      exp_st[k] = expect_one(tc->which, tc->scene, &s, b, method, k, exp + k * sz);
+      if (exp_st[k] == PW85_OK) n_ok++;
+      else if (first == M) first = k;
+      if (exp_st[k] != PW85_OK && (first_perm == M || perm[k] < perm[first_perm])) first_perm = k;
+      if (tc->which == 0) n_overlap += *(int *)(exp + k * sz) == 1;
+    }
+    /* the scene has failing and good pairs (and both verdicts) */
+    g_assert_cmpint(first, <, 20);
+    g_assert_cmpint(n_ok, >, M - M / 10);
+    if (tc->which == 0) g_assert_cmpint(n_overlap, >, M / 10);
+    for (int order = 0; order < 2; order++)
+      for (int threads = 1; threads <= 2; threads++) {
+        memset(out, 0xA5, M * sz);
+        memset(st, 0xA5, M * sizeof(int));
+        int ret = call_new(tc->which, tc->scene, order ? &t : &s, b, method, out, st, threads);
+        g_assert_cmpint(ret, ==, exp_st[order ? first_perm : first]);
+        for (int k = 0; k < M; k++) {
+          int p = order ? perm[k] : k;
+          g_assert_cmpint(st[p], ==, exp_st[k]);
+          g_assert_true(memcmp(out + p * sz, exp + k * sz, sz) == 0);
+        }
+      }
+  }
+  g_rand_free(rng);
+}
+
+/* The minimum image against a brute-force search: spheres of radius 0.05
+ * (mu2 = |r12|^2 / 0.1^2 gives the length of the image used), centres in
+ * [-2 L, 2 L], 20 random triclinic boxes with tilts uniform in [-tilt, tilt].
+ * Brute force: every image w - (n1 a1 + n2 a2 + n3 a3) no longer than w (the
+ * wrapped vector), n3, then n2, then n1 enumerated over the ranges that this
+ * bound allows. Asserted: the image used is the nearest whenever the nearest
+ * is shorter than min(Lx, Ly, Lz)/2, never shorter than the nearest; the
+ * other pairs where it is not the nearest are counted (g_test_message). */
+static void test_min_image(gconstpointer data) {
+  double const tilt = *(const double *)data;
+  enum { P = 2000 };
+  static double c[6 * P], q[12 * P];
+  static long long pairs[2 * P];
+  static pw85_result res[P];
+  GRand *rng = g_rand_new_with_seed(51 + (guint32)(10 * tilt));
+  for (int i = 0; i < 2 * P; i++) sphere_q(0.05, q + 6 * i);
+  for (int k = 0; k < P; k++) pairs[2 * k] = 2 * k, pairs[2 * k + 1] = 2 * k + 1;
+  long long near = 0, far = 0, far_not_nearest = 0;
+  double worst_far = 1.0;
+  for (int nb = 0; nb < 20; nb++) {
+    double box[6];
+    random_box(rng, tilt, box);
+    double const lmin = fmin(box[0], fmin(box[1], box[2]));
+    for (int i = 0; i < 2 * P; i++)
+      for (int d = 0; d < 3; d++) c[3 * i + d] = g_rand_double_range(rng, -2.0, 2.0) * box[d];
+    g_assert_cmpint(pw85_scene_contact_function(2 * P, c, q, box, P, pairs, PW85_METHOD_DEFAULT,
+                                                res, NULL, 2), ==, PW85_OK);
+    double const a[3][3] = {{box[0], 0, 0},
+                            {box[3] * box[1], box[1], 0},
+                            {box[4] * box[2], box[5] * box[2], box[2]}};
+    for (int k = 0; k < P; k++) {
+      double w[3];
+      for (int d = 0; d < 3; d++) w[d] = c[3 * (2 * k + 1) + d] - c[3 * (2 * k) + d];
+      wrap(box, w);
+      double const lw = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+      double best2 = lw * lw;
+      for (long n3 = (long)floor((w[2] - lw) / a[2][2]); n3 <= (long)ceil((w[2] + lw) / a[2][2]);
+           n3++) {
+        double const y3 = w[1] - n3 * a[2][1];
+        for (long n2 = (long)floor((y3 - lw) / a[1][1]); n2 <= (long)ceil((y3 + lw) / a[1][1]);
+             n2++) {
+          double const x2 = w[0] - n3 * a[2][0] - n2 * a[1][0];
+          for (long n1 = (long)floor((x2 - lw) / a[0][0]);
+               n1 <= (long)ceil((x2 + lw) / a[0][0]); n1++) {
+            double const v[3] = {x2 - n1 * a[0][0], y3 - n2 * a[1][1], w[2] - n3 * a[2][2]};
+            double const v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+            if (v2 < best2) best2 = v2;
+          }
+        }
+      }
+      double const used2 = res[k].mu2 * 0.01;
+      g_assert_cmpfloat(used2, >=, best2 * (1 - 1e-12));
+      if (sqrt(best2) < 0.5 * lmin) {
+        near++;
+        g_assert_cmpfloat(rel_error(used2, best2), <=, 1e-12);
+      } else {
+        far++;
+        if (rel_error(used2, best2) > 1e-12) {
+          far_not_nearest++;
+          if (sqrt(used2 / best2) > worst_far) worst_far = sqrt(used2 / best2);
+        }
+      }
+    }
+  }
+  g_assert_cmpint(near, >, 20 * P / 20);
+  g_test_message("tilts in [-%g, %g]: %lld pairs nearer than min(L)/2, all the nearest image; "
+                 "%lld farther, of which %lld not the nearest (image used up to %.3f times "
+                 "longer)", tilt, tilt, near, far, far_not_nearest, worst_far);
+  g_rand_free(rng);
+}
+
+/* Bounding spheres against the box: box {2, 2, 2, 0.3, -0.2, 0.4}
+ * (min(L)/2 = 1), axis-aligned ellipsoids whose largest semi-axes sum to
+ * 1.01 (pair fails with PW85_ERR_INVALID_ARGUMENT, NaN outputs) or 0.99
+ * (computed); without a box both are computed. */
+static void test_scene_reach(void) {
+  double const box[6] = {2.0, 2.0, 2.0, 0.3, -0.2, 0.4};
+  double c[12] = {0, 0, 0, 0.3, 0.02, 0.03, 1.0, 1.0, 1.0, 1.3, 1.02, 1.03};
+  double q[24] = {0.96 * 0.96, 0, 0, 0.01, 0, 0.01,  0.05 * 0.05, 0, 0, 0.0025, 0, 0.0025,
+                  0.94 * 0.94, 0, 0, 0.01, 0, 0.01,  0.05 * 0.05, 0, 0, 0.0025, 0, 0.0025};
+  long long pairs[4] = {0, 1, 2, 3};
+  int v[2], st[2];
+  pw85_result r[2];
+  pw85_contact_t ct[2];
+  g_assert_cmpint(pw85_scene_overlap(4, c, q, box, 2, pairs, v, st, 1), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(st[0], ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(v[0], ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(st[1], ==, PW85_OK);
+  g_assert_cmpint(v[1], ==, 1);
+  g_assert_cmpint(pw85_scene_contact_function(4, c, q, box, 2, pairs, 0, r, st, 1), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+  g_assert_true(isnan(r[0].mu2) && r[1].mu2 < 1.0);
+  g_assert_cmpint(pw85_scene_contact(4, c, q, box, 2, pairs, ct, st, 1), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+  g_assert_true(isnan(ct[0].depth) && ct[1].depth > 0.0);
+  g_assert_cmpint(pw85_scene_overlap(4, c, q, NULL, 2, pairs, v, st, 1), ==, PW85_OK);
+  g_assert_cmpint(v[0], ==, 1);
+}
+
+/* Call-level errors of the new functions: nothing written (outputs and
+ * status keep a sentinel); m = 0 is a no-op. */
+static void test_new_bad_input(void) {
+  static pair_arrays s;
+  make_pair_arrays(&s, 61);
+  double const good[6] = {3, 3, 3, 0.2, 0.1, -0.3};
+  double bad_boxes[][6] = {{0, 3, 3, 0, 0, 0},       {3, -1, 3, 0, 0, 0},
+                           {3, 3, NAN, 0, 0, 0},     {INFINITY, 3, 3, 0, 0, 0},
+                           {3, 3, 3, NAN, 0, 0},     {3, 3, 3, 0, INFINITY, 0},
+                           {3, 3, 3, 0, 0, -INFINITY}, {3, 3, 1e300, 0, 0, 1e300}};
+  int v[4], st[4];
+  pw85_result r[4];
+  pw85_contact_t ct[4];
+  double *r12 = s.r12, *q1 = s.q1, *q2 = s.q2, *c = s.c, *q = s.q;
+  long long *pr = s.pairs;
+#define NOTHING_WRITTEN(call, expect)                         \
+  do {                                                        \
+    memset(v, 0x5A, sizeof v);                                \
+    memset(st, 0x5A, sizeof st);                              \
+    memset(r, 0x5A, sizeof r);                                \
+    memset(ct, 0x5A, sizeof ct);                              \
+    g_assert_cmpint((call), ==, (expect));                    \
+    unsigned char ref[sizeof ct];                             \
+    memset(ref, 0x5A, sizeof ref);                            \
+    g_assert_true(memcmp(v, ref, sizeof v) == 0);             \
+    g_assert_true(memcmp(st, ref, sizeof st) == 0);           \
+    g_assert_true(memcmp(r, ref, sizeof r) == 0);             \
+    g_assert_true(memcmp(ct, ref, sizeof ct) == 0);           \
+  } while (0)
+  int const E = PW85_ERR_INVALID_ARGUMENT;
+  /* NULL required pointers, m < 0, nthreads < 0 */
+  NOTHING_WRITTEN(pw85_overlap_pairs(4, NULL, q1, q2, v, st, 1), E);
+  NOTHING_WRITTEN(pw85_overlap_pairs(4, r12, NULL, q2, v, st, 1), E);
+  NOTHING_WRITTEN(pw85_overlap_pairs(4, r12, q1, NULL, v, st, 1), E);
+  NOTHING_WRITTEN(pw85_overlap_pairs(4, r12, q1, q2, NULL, st, 1), E);
+  NOTHING_WRITTEN(pw85_overlap_pairs(-1, r12, q1, q2, v, st, 1), E);
+  NOTHING_WRITTEN(pw85_overlap_pairs(4, r12, q1, q2, v, st, -1), E);
+  NOTHING_WRITTEN(pw85_contact_function_pairs(4, NULL, q1, q2, 0, r, st, 1), E);
+  NOTHING_WRITTEN(pw85_contact_function_pairs(4, r12, NULL, q2, 0, r, st, 1), E);
+  NOTHING_WRITTEN(pw85_contact_function_pairs(4, r12, q1, NULL, 0, r, st, 1), E);
+  NOTHING_WRITTEN(pw85_contact_function_pairs(4, r12, q1, q2, 0, NULL, st, 1), E);
+  NOTHING_WRITTEN(pw85_contact_function_pairs(-5, r12, q1, q2, 0, r, st, 1), E);
+  NOTHING_WRITTEN(pw85_contact_function_pairs(4, r12, q1, q2, 0, r, st, INT_MIN), E);
+  NOTHING_WRITTEN(pw85_contact_function_pairs(4, r12, q1, q2, -1, r, st, 1),
+                  PW85_ERR_UNKNOWN_METHOD);
+  NOTHING_WRITTEN(pw85_contact_function_pairs(4, r12, q1, q2, 5, r, st, 1),
+                  PW85_ERR_UNKNOWN_METHOD);
+  NOTHING_WRITTEN(pw85_contact_pairs(4, NULL, q1, q2, ct, st, 1), E);
+  NOTHING_WRITTEN(pw85_contact_pairs(4, r12, NULL, q2, ct, st, 1), E);
+  NOTHING_WRITTEN(pw85_contact_pairs(4, r12, q1, NULL, ct, st, 1), E);
+  NOTHING_WRITTEN(pw85_contact_pairs(4, r12, q1, q2, NULL, st, 1), E);
+  NOTHING_WRITTEN(pw85_contact_pairs(LLONG_MIN, r12, q1, q2, ct, st, 1), E);
+  NOTHING_WRITTEN(pw85_contact_pairs(4, r12, q1, q2, ct, st, -3), E);
+  for (int nb = -1; nb < (int)(sizeof bad_boxes / sizeof bad_boxes[0]); nb++) {
+    const double *b = nb < 0 ? good : bad_boxes[nb];
+    if (nb >= 0) {
+      NOTHING_WRITTEN(pw85_scene_overlap(N, c, q, b, 4, pr, v, st, 1), E);
+      NOTHING_WRITTEN(pw85_scene_contact_function(N, c, q, b, 4, pr, 0, r, st, 1), E);
+      NOTHING_WRITTEN(pw85_scene_contact(N, c, q, b, 4, pr, ct, st, 1), E);
+      continue;
+    }
+    NOTHING_WRITTEN(pw85_scene_overlap(-1, c, q, b, 4, pr, v, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_overlap(N, NULL, q, b, 4, pr, v, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_overlap(N, c, NULL, b, 4, pr, v, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_overlap(N, c, q, b, 4, NULL, v, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_overlap(N, c, q, b, 4, pr, NULL, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_overlap(N, c, q, b, -4, pr, v, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_overlap(N, c, q, b, 4, pr, v, st, -1), E);
+    NOTHING_WRITTEN(pw85_scene_contact_function(-1, c, q, b, 4, pr, 0, r, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_contact_function(N, NULL, q, b, 4, pr, 0, r, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_contact_function(N, c, NULL, b, 4, pr, 0, r, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_contact_function(N, c, q, b, 4, NULL, 0, r, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_contact_function(N, c, q, b, 4, pr, 0, NULL, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_contact_function(N, c, q, b, -4, pr, 0, r, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_contact_function(N, c, q, b, 4, pr, 0, r, st, -1), E);
+    NOTHING_WRITTEN(pw85_scene_contact_function(N, c, q, b, 4, pr, 7, r, st, 1),
+                    PW85_ERR_UNKNOWN_METHOD);
+    NOTHING_WRITTEN(pw85_scene_contact(-1, c, q, b, 4, pr, ct, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_contact(N, NULL, q, b, 4, pr, ct, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_contact(N, c, NULL, b, 4, pr, ct, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_contact(N, c, q, b, 4, NULL, ct, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_contact(N, c, q, b, 4, pr, NULL, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_contact(N, c, q, b, -4, pr, ct, st, 1), E);
+    NOTHING_WRITTEN(pw85_scene_contact(N, c, q, b, 4, pr, ct, st, -1), E);
+  }
+  /* m = 0: a no-op, whatever the pointers */
+  NOTHING_WRITTEN(pw85_overlap_pairs(0, NULL, NULL, NULL, NULL, NULL, 1), PW85_OK);
+  NOTHING_WRITTEN(pw85_contact_function_pairs(0, NULL, NULL, NULL, 0, NULL, NULL, 1), PW85_OK);
+  NOTHING_WRITTEN(pw85_contact_pairs(0, NULL, NULL, NULL, NULL, NULL, 1), PW85_OK);
+  NOTHING_WRITTEN(pw85_scene_overlap(0, NULL, NULL, NULL, 0, NULL, NULL, NULL, 1), PW85_OK);
+  NOTHING_WRITTEN(pw85_scene_contact_function(0, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL, 1),
+                  PW85_OK);
+  NOTHING_WRITTEN(pw85_scene_contact(0, NULL, NULL, NULL, 0, NULL, NULL, NULL, 1), PW85_OK);
+#undef NOTHING_WRITTEN
+  /* status may be NULL */
+  g_assert_cmpint(pw85_contact_pairs(4, r12, q1, q2, ct, NULL, 2), ==, PW85_OK);
+  g_assert_cmpint(pw85_scene_overlap(N, c, q, good, 4, pr, v, NULL, 2), ==, PW85_OK);
+}
+
+/* nthreads far beyond the CPUs: every batch call (ids below) returns the
+ * results of nthreads = 1. Without the clamp of the thread count, the
+ * OpenMP runtime fails to create the threads and ends the process. */
+enum { F_OVERLAP_BATCH, F_CF_BATCH, F_CONTACT_BATCH, F_OVERLAP_PAIRS, F_CF_PAIRS, F_CONTACT_PAIRS,
+       F_SCENE_OVERLAP, F_SCENE_CF, F_SCENE_CONTACT, F_COUNT };
+static const int f_ids[F_COUNT] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+
+static int call_batch(int f, const pair_arrays *s, void *out, int *st, int nthreads) {
+  double const box[6] = {4.0, 3.5, 5.0, 0.4, -0.3, 0.2};
+  switch (f) {
+    case F_OVERLAP_BATCH: return pw85_overlap_batch(N, s->c, s->q, M, s->pairs, out, st, nthreads);
+    case F_CF_BATCH:
+      return pw85_contact_function_batch(N, s->c, s->q, M, s->pairs, out, st, nthreads);
+    case F_CONTACT_BATCH: return pw85_contact_batch(N, s->c, s->q, M, s->pairs, out, st, nthreads);
+    case F_OVERLAP_PAIRS: return call_new(0, 0, s, NULL, 0, out, st, nthreads);
+    case F_CF_PAIRS: return call_new(1, 0, s, NULL, PW85_METHOD_DEFAULT, out, st, nthreads);
+    case F_CONTACT_PAIRS: return call_new(2, 0, s, NULL, 0, out, st, nthreads);
+    case F_SCENE_OVERLAP: return call_new(0, 1, s, box, 0, out, st, nthreads);
+    case F_SCENE_CF: return call_new(1, 1, s, box, PW85_METHOD_DEFAULT, out, st, nthreads);
+    default: return call_new(2, 1, s, box, 0, out, st, nthreads);
+  }
+}
+
+static void test_huge_nthreads(gconstpointer data) {
+  int const f = *(const int *)data;
+  static pair_arrays s;
+  make_pair_arrays(&s, 71);
+  spoil(&s);
+  memset(big_out[0], 0xA5, sizeof big_out[0]);
+  int const ret1 = call_batch(f, &s, big_out[0], big_st[0], 1);
+  g_assert_cmpint(ret1, !=, PW85_OK);  /* the spoiled pairs fail */
+  int const huge[3] = {100000, INT_MAX, 0};
+  for (int h = 0; h < 3; h++) {
+    memset(big_out[1], 0xA5, sizeof big_out[1]);
+    g_assert_cmpint(call_batch(f, &s, big_out[1], big_st[1], huge[h]), ==, ret1);
+    g_assert_true(memcmp(big_out[0], big_out[1], sizeof big_out[0]) == 0);
+    g_assert_true(memcmp(big_st[0], big_st[1], sizeof big_st[0]) == 0);
+  }
+}
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   g_test_add_func("/pw85_overlap_batch/threads-1-2", test_overlap_batch);
@@ -172,5 +616,32 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact_function_batch/bad-input",
                   test_contact_function_batch_bad_input);
   g_test_add_func("/pw85_contact_batch/bad-input", test_contact_batch_bad_input);
+  static const char *const new_names[9] = {
+    "/pw85_overlap_pairs/one-pair-bitwise", "/pw85_contact_function_pairs/one-pair-bitwise",
+    "/pw85_contact_pairs/one-pair-bitwise", "/pw85_scene_overlap/one-pair-bitwise",
+    "/pw85_scene_contact_function/one-pair-bitwise", "/pw85_scene_contact/one-pair-bitwise",
+    "/pw85_scene_overlap/periodic-one-pair-bitwise",
+    "/pw85_scene_contact_function/periodic-one-pair-bitwise",
+    "/pw85_scene_contact/periodic-one-pair-bitwise"};
+  for (int c = 0; c < 9; c++)
+    g_test_add_data_func(new_names[c], &new_cases[c], test_new_against_one_pair);
+  static const double tilts[3] = {0.5, 1.0, 3.0};
+  g_test_add_data_func("/pw85_scene_contact_function/min-image-tilt-0.5", &tilts[0],
+                       test_min_image);
+  g_test_add_data_func("/pw85_scene_contact_function/min-image-tilt-1", &tilts[1],
+                       test_min_image);
+  g_test_add_data_func("/pw85_scene_contact_function/min-image-tilt-3", &tilts[2],
+                       test_min_image);
+  g_test_add_func("/pw85_scene_overlap/bounding-spheres", test_scene_reach);
+  g_test_add_func("/pw85_scene_overlap/bad-input", test_new_bad_input);
+  static const char *const f_names[F_COUNT] = {
+    "pw85_overlap_batch", "pw85_contact_function_batch", "pw85_contact_batch",
+    "pw85_overlap_pairs", "pw85_contact_function_pairs", "pw85_contact_pairs",
+    "pw85_scene_overlap", "pw85_scene_contact_function", "pw85_scene_contact"};
+  for (int f = 0; f < F_COUNT; f++) {
+    char path[96];
+    g_snprintf(path, sizeof path, "/%s/nthreads-huge", f_names[f]);
+    g_test_add_data_func(path, &f_ids[f], test_huge_nthreads);
+  }
   return g_test_run();
 }

@@ -23,11 +23,14 @@ program test_fortran
   type(pw85_result) :: mres
   real(c_double) :: centres(3, 2), qs(6, 2)
   integer(c_long_long) :: pairs(2, 2)
-  integer(c_int) :: verdicts(2)
+  integer(c_int) :: verdicts(2), statuses(2)
+  real(c_double) :: r12s(3, 2), q1s(6, 2), q2s(6, 2), box(6)
+  type(pw85_result) :: mresv(2)
+  type(pw85_contact_t) :: contacts(2)
   character(len=:), allocatable :: version, message_ok, message_spd
 
   write (*, '(a)') 'TAP version 13'
-  write (*, '(a)') '1..15'
+  write (*, '(a)') '1..20'
 
   ! Version: the loaded library and the module constant agree.
   version = pw85_version_string()
@@ -125,6 +128,45 @@ program test_fortran
   status = pw85_contact_function_method(r12, q1, q2, 99_c_int, mres)
   call check(status == PW85_ERR_UNKNOWN_METHOD .and. ieee_is_nan(mres%mu2), &
              'pw85_contact_function_method: unknown method gives PW85_ERR_UNKNOWN_METHOD, NaN')
+
+  ! Per-pair arrays: the tutorial pair and the same with r12 / 2
+  ! (mu^2 / 4), two threads.
+  r12s(:, 1) = r12
+  r12s(:, 2) = 0.5_c_double * r12
+  q1s(:, 1) = q1
+  q1s(:, 2) = q1
+  q2s(:, 1) = q2
+  q2s(:, 2) = q2
+  status = pw85_contact_function_pairs(2_c_long_long, r12s, q1s, q2s, PW85_METHOD_DEFAULT, &
+                                       mresv, statuses, 2_c_int)
+  call check(status == PW85_OK .and. all(statuses == PW85_OK) .and. &
+             abs(mresv(1)%mu2 - MU2_REF) <= RTOL * MU2_REF .and. &
+             abs(mresv(2)%mu2 - 0.25_c_double * MU2_REF) <= RTOL * MU2_REF, &
+             'pw85_contact_function_pairs: tutorial pair, and with r12 / 2 (mu^2 / 4)')
+  status = pw85_contact_pairs(2_c_long_long, r12s, q1s, q2s, contacts, nthreads=1_c_int)
+  call check(status == PW85_OK .and. contacts(1)%depth < 0.0_c_double .and. &
+             contacts(2)%depth > 0.0_c_double, &
+             'pw85_contact_pairs: apart, then overlapping (status omitted)')
+
+  ! Periodic scene: centre 2 moved by the lattice vector a2 = (xy Ly, Ly, 0)
+  ! of a tilted box; the minimum image is the tutorial pair again.
+  box = [40.0_c_double, 40.0_c_double, 40.0_c_double, 0.25_c_double, 0.0_c_double, &
+         0.0_c_double]
+  centres(:, 2) = x2 + [10.0_c_double, 40.0_c_double, 0.0_c_double]
+  status = pw85_scene_contact_function(2_c_long_long, centres, qs, box, 2_c_long_long, pairs, &
+                                       PW85_METHOD_DEFAULT, mresv, statuses, 1_c_int)
+  call check(status == PW85_OK .and. abs(mresv(1)%mu2 - MU2_REF) <= RTOL * MU2_REF .and. &
+             abs(mresv(2)%mu2 - MU2_REF) <= RTOL * MU2_REF, &
+             'pw85_scene_contact_function: minimum image in a tilted box is the tutorial pair')
+  status = pw85_scene_overlap(2_c_long_long, centres, qs, box, 2_c_long_long, pairs, &
+                              verdicts, nthreads=2_c_int)
+  call check(status == PW85_OK .and. all(verdicts == 0), &
+             'pw85_scene_overlap: periodic tutorial pair gives 0 (status omitted)')
+  status = pw85_scene_contact_function(2_c_long_long, centres, qs, m=2_c_long_long, &
+                                       pairs=pairs, method=PW85_METHOD_DEFAULT, res=mresv, &
+                                       nthreads=1_c_int)
+  call check(status == PW85_OK .and. mresv(1)%mu2 > 2.0_c_double * MU2_REF, &
+             'pw85_scene_contact_function: box omitted, no periodicity (farther apart)')
 
   ! Main-program allocatables are not freed automatically at the end; free
   ! them so that LeakSanitizer (sanitizer builds) sees no leak.

@@ -75,22 +75,47 @@ inline void prefetch_pair(long long n, double const *centres, double const *q,
   prefetch(q + 6 * j + 5);
 }
 
-inline int threads_of(int nthreads) noexcept {
+// Number of OpenMP threads of a batch call of m > 0 pairs: nthreads (0: the
+// OpenMP default), at most omp_get_num_procs() and at most m. An unbounded
+// request would make the OpenMP runtime create that many threads, which
+// fails (the runtime then prints and exits, or the process crashes) long
+// before nthreads = INT_MAX.
+inline int threads_for(int nthreads, long long m) noexcept {
 #ifdef _OPENMP
-  return nthreads > 0 ? nthreads : omp_get_max_threads();
+  long long t = nthreads > 0 ? nthreads : omp_get_max_threads();
+  long long const procs = omp_get_num_procs();
+  if (t > procs) t = procs;
+  if (t > m) t = m;
+  return t < 1 ? 1 : static_cast<int>(t);
 #else
   (void)nthreads;
+  (void)m;
   return 1;
 #endif
 }
 
-// The loop shared by the three batch functions: pair k of m (OpenMP, dynamic
-// chunks of `chunk` pairs; out is the caller's output array, checked
-// non-null), one(k, r12, i, j) computes and writes its
-// results and returns its status (r12 == nullptr: index out of range). The
-// returned status is that of the first failing pair, recomputed after the
-// loop (the same deterministic call, so its outputs are rewritten unchanged)
-// so that it does not depend on the thread count.
+// The loop of every batch call: one(k) computes pair k of m > 0, writes its
+// outputs and returns its status; status (may be null) receives it. OpenMP,
+// dynamic chunks of `chunk` pairs on threads_for(nthreads, m) threads. The
+// returned status is that of the lowest failing k, recomputed after the loop
+// (the same deterministic call, so its outputs are rewritten unchanged) so
+// that it does not depend on the thread count.
+template <class One>
+int run_pairs(long long m, int *status, int nthreads, int chunk, One one) noexcept {
+  long long first_bad = m;
+#pragma omp parallel for schedule(dynamic, chunk) num_threads(threads_for(nthreads, m)) \
+    reduction(min : first_bad)
+  for (long long k = 0; k < m; ++k) {
+    int const res = one(k);
+    if (status != nullptr) status[k] = res;
+    if (res != PW85_OK && k < first_bad) first_bad = k;
+  }
+  return first_bad == m ? PW85_OK : one(first_bad);
+}
+
+// The index-pair loop of the *_batch functions: checks the call's arguments,
+// then one(k, r12, i, j) computes pair k with r12 = c_j - c_i (r12 ==
+// nullptr: index out of range) and returns its status.
 template <class One>
 int batch(long long n, double const *centres, double const *q, long long m,
           long long const *pairs, void const *out, int *status, int nthreads, int chunk,
@@ -99,23 +124,13 @@ int batch(long long n, double const *centres, double const *q, long long m,
   if (n < 0 || m < 0 || centres == nullptr || q == nullptr || pairs == nullptr ||
       out == nullptr || nthreads < 0)
     return PW85_ERR_INVALID_ARGUMENT;
-  long long first_bad = m;
-#pragma omp parallel for schedule(dynamic, chunk) num_threads(threads_of(nthreads)) \
-    reduction(min : first_bad)
-  for (long long k = 0; k < m; ++k) {
+  return run_pairs(m, status, nthreads, chunk, [&](long long k) noexcept {
     prefetch_pair(n, centres, q, pairs, m, k);
     double r12[3];
     long long i, j;
     bool const ok = pair_r12(n, centres, pairs, k, r12, i, j);
-    int const res = one(k, ok ? r12 : nullptr, i, j);
-    if (status != nullptr) status[k] = res;
-    if (res != PW85_OK && k < first_bad) first_bad = k;
-  }
-  if (first_bad == m) return PW85_OK;
-  double r12[3];
-  long long i, j;
-  bool const ok = pair_r12(n, centres, pairs, first_bad, r12, i, j);
-  return one(first_bad, ok ? r12 : nullptr, i, j);
+    return one(k, ok ? r12 : nullptr, i, j);
+  });
 }
 
 // pw85_overlap off its hot path: full argument check (L D L^T pivots instead
@@ -202,6 +217,245 @@ int pw85_contact_function_batch(long long n, double const *centres, double const
 int pw85_contact_batch(long long n, double const *centres, double const *q, long long m,
                        long long const *pairs, pw85_contact_t *c, int *status, int nthreads) {
   return batch(n, centres, q, m, pairs, c, status, nthreads, 64,
+               [&](long long k, double const *r12, long long i, long long j) noexcept {
+                 if (r12) return pw85_contact(r12, q + 6 * i, q + 6 * j, c + k);
+                 fill_nan_contact(c + k);
+                 return int{PW85_ERR_INVALID_ARGUMENT};
+               });
+}
+
+}  // extern "C"
+
+// ---- Per-pair arrays and periodic scenes ------------------------------------
+// pw85_*_pairs: pair k is (r12[3k..3k+2], q1[6k..6k+5], q2[6k..6k+5]).
+// pw85_scene_*: pair k is (i, j) = (pairs[2k], pairs[2k+1]) of the scene,
+// r12 = c_j - c_i, or its minimum image in the box. Each pair is computed by
+// the one-pair function on that r12, so its result does not depend on the
+// other pairs, on its position k or on the thread count (docs/batch.md).
+
+namespace {
+
+void fill_nan_result(pw85_result *res, int method) noexcept {
+  fill_nan(&res->mu2, 1);
+  fill_nan(&res->lambda, 1);
+  fill_nan(&res->mu2_error, 1);
+  res->iterations = 0;
+  res->method = method;
+}
+
+// The checks shared by the calls of m > 0 pairs (pointers checked by the
+// caller).
+inline bool valid_count(long long m, int nthreads) noexcept { return m > 0 && nthreads >= 0; }
+
+// Periodic box in the HOOMD/GSD convention {Lx, Ly, Lz, xy, xz, yz}: lattice
+// vectors a1 = (Lx, 0, 0), a2 = (xy Ly, Ly, 0), a3 = (xz Lz, yz Lz, Lz).
+struct Box {
+  bool periodic = false;
+  double l[3] = {0, 0, 0};
+  double inv_l[3] = {0, 0, 0};  // 1 / l, rounded
+  double xy_ly = 0, xz_lz = 0, yz_lz = 0;  // the tilt offsets of a2 and a3
+  // Largest admissible sum of the two bounding-sphere radii of a pair:
+  // min(Lx, Ly, Lz) / 2, less a relative 1e-9 for the rounding of the wrap
+  // and of the radius bounds (docs/batch.md).
+  double max_reach = 0;
+  double max_reach2_half = 0;  // max_reach^2 / 2
+};
+
+// A NULL box: no periodicity. Else lengths finite and > 0, tilts finite,
+// tilt offsets finite.
+bool make_box(double const *box, Box &b) noexcept {
+  if (box == nullptr) return true;
+  for (int d = 0; d < 6; ++d)
+    if (!std::isfinite(box[d])) return false;
+  if (!(box[0] > 0.0 && box[1] > 0.0 && box[2] > 0.0)) return false;
+  b.periodic = true;
+  for (int d = 0; d < 3; ++d) {
+    b.l[d] = box[d];
+    b.inv_l[d] = 1.0 / box[d];
+  }
+  b.xy_ly = box[3] * box[1];
+  b.xz_lz = box[4] * box[2];
+  b.yz_lz = box[5] * box[2];
+  if (!std::isfinite(b.xy_ly) || !std::isfinite(b.xz_lz) || !std::isfinite(b.yz_lz)) return false;
+  double const lmin = std::fmin(box[0], std::fmin(box[1], box[2]));
+  b.max_reach = 0.5 * lmin * (1.0 - 1e-9);
+  b.max_reach2_half = 0.5 * b.max_reach * b.max_reach;
+  return true;
+}
+
+// std::round (nearest integer, ties away from zero) without the library
+// call that baseline x86-64 (no SSE4.1 roundsd) makes of it: truncation by
+// conversion, then the exact remainder x - t decides. |x| >= 2^52, NaN:
+// x is returned, as std::round does.
+inline double round_away(double x) noexcept {
+  if (!(std::fabs(x) < 0x1p52)) return x;
+  double t = static_cast<double>(static_cast<long long>(x));
+  double const rem = x - t;
+  if (rem >= 0.5) t += 1.0;
+  else if (rem <= -0.5) t -= 1.0;
+  return t;
+}
+
+// The standard triclinic wrap (HOOMD's Box::minImage): z first, then y,
+// then x, each by the nearest integer (ties away from zero) to the
+// coordinate times the rounded 1 / L. The result lies in the brick
+// |x| <= Lx/2, |y| <= Ly/2, |z| <= Lz/2 (up to roundings), a fundamental
+// domain of the lattice.
+inline void min_image(Box const &b, double r[3]) noexcept {
+  double const iz = round_away(r[2] * b.inv_l[2]);
+  r[2] -= b.l[2] * iz;
+  r[1] -= b.yz_lz * iz;
+  r[0] -= b.xz_lz * iz;
+  double const iy = round_away(r[1] * b.inv_l[1]);
+  r[1] -= b.l[1] * iy;
+  r[0] -= b.xy_ly * iy;
+  double const ix = round_away(r[0] * b.inv_l[0]);
+  r[0] -= b.l[0] * ix;
+}
+
+// Upper bound of the largest eigenvalue of Q, the square of the largest
+// semi-axis of its ellipsoid: the smaller of the trace and the largest
+// Gershgorin row sum (both of |entries|). (Plain comparisons, not
+// std::fmax, which is a library call here; a NaN entry may give any value:
+// such a pair fails with PW85_ERR_INVALID_ARGUMENT either way.)
+inline double reach2(double const *q) noexcept {
+  double const a00 = std::fabs(q[0]), a01 = std::fabs(q[1]), a02 = std::fabs(q[2]);
+  double const a11 = std::fabs(q[3]), a12 = std::fabs(q[4]), a22 = std::fabs(q[5]);
+  double const r0 = a00 + a01 + a02, r1 = a01 + a11 + a12, r2 = a02 + a12 + a22;
+  double const trace = a00 + a11 + a22;
+  double g = r0 > r1 ? r0 : r1;
+  g = g > r2 ? g : r2;
+  return trace < g ? trace : g;
+}
+
+// Whether the bounding spheres of q1 and q2 (radii sqrt(reach2)) have radii
+// summing to more than box.max_reach. Cheap test first: (a + b)^2 <=
+// 2 (a^2 + b^2).
+inline bool too_large(Box const &box, double const *q1, double const *q2) noexcept {
+  double const g1 = reach2(q1), g2 = reach2(q2);
+  if (g1 + g2 <= box.max_reach2_half) return false;
+  return std::sqrt(g1) + std::sqrt(g2) > box.max_reach;
+}
+
+// r12 of pair k of a scene: c_j - c_i, or its minimum image in the box.
+// Returns PW85_OK, or PW85_ERR_INVALID_ARGUMENT for an index out of range or
+// (periodic box) a pair whose bounding spheres reach past max_reach. A
+// non-finite centre or matrix is passed on to the one-pair function, which
+// reports it.
+inline int scene_r12(long long n, double const *centres, double const *q, Box const &box,
+                     long long const *pairs, long long k, double r12[3], long long &i,
+                     long long &j) noexcept {
+  if (!pair_r12(n, centres, pairs, k, r12, i, j)) return PW85_ERR_INVALID_ARGUMENT;
+  if (!box.periodic) return PW85_OK;
+  if (too_large(box, q + 6 * i, q + 6 * j)) return PW85_ERR_INVALID_ARGUMENT;
+  if (std::isfinite(r12[0]) && std::isfinite(r12[1]) && std::isfinite(r12[2])) min_image(box, r12);
+  return PW85_OK;
+}
+
+// The loop of the pw85_scene_* functions after their argument checks:
+// one(k, r12, i, j) computes pair k (r12 == nullptr: the pair failed
+// scene_r12) and returns its status.
+template <class One>
+int scene(long long n, double const *centres, double const *q, Box const &box, long long m,
+          long long const *pairs, int *status, int nthreads, int chunk, One one) noexcept {
+  return run_pairs(m, status, nthreads, chunk, [&](long long k) noexcept {
+    prefetch_pair(n, centres, q, pairs, m, k);
+    double r12[3];
+    long long i, j;
+    int const s = scene_r12(n, centres, q, box, pairs, k, r12, i, j);
+    return one(k, s == PW85_OK ? r12 : nullptr, i, j);
+  });
+}
+
+inline bool scene_args(long long n, double const *centres, double const *q, double const *box,
+                       long long m, long long const *pairs, void const *out, int nthreads,
+                       Box &b) noexcept {
+  return n >= 0 && valid_count(m, nthreads) && centres != nullptr && q != nullptr &&
+         pairs != nullptr && out != nullptr && make_box(box, b);
+}
+
+}  // namespace
+
+extern "C" {
+
+int pw85_overlap_pairs(long long m, double const *r12, double const *q1, double const *q2,
+                       int *overlap, int *status, int nthreads) {
+  if (m == 0) return PW85_OK;
+  if (!valid_count(m, nthreads) || r12 == nullptr || q1 == nullptr || q2 == nullptr ||
+      overlap == nullptr)
+    return PW85_ERR_INVALID_ARGUMENT;
+  return run_pairs(m, status, nthreads, 256, [&](long long k) noexcept {
+    int const res = pw85_overlap(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k);
+    overlap[k] = res;
+    return res < 0 ? res : PW85_OK;
+  });
+}
+
+int pw85_contact_function_pairs(long long m, double const *r12, double const *q1,
+                                double const *q2, int method, pw85_result *res, int *status,
+                                int nthreads) {
+  if (m == 0) return PW85_OK;
+  if (!valid_count(m, nthreads) || r12 == nullptr || q1 == nullptr || q2 == nullptr ||
+      res == nullptr)
+    return PW85_ERR_INVALID_ARGUMENT;
+  if (!pw85::is_method(method)) return PW85_ERR_UNKNOWN_METHOD;
+  return run_pairs(m, status, nthreads, 64, [&](long long k) noexcept {
+    return pw85_contact_function_method(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k, method, res + k);
+  });
+}
+
+int pw85_contact_pairs(long long m, double const *r12, double const *q1, double const *q2,
+                       pw85_contact_t *c, int *status, int nthreads) {
+  if (m == 0) return PW85_OK;
+  if (!valid_count(m, nthreads) || r12 == nullptr || q1 == nullptr || q2 == nullptr ||
+      c == nullptr)
+    return PW85_ERR_INVALID_ARGUMENT;
+  return run_pairs(m, status, nthreads, 64, [&](long long k) noexcept {
+    return pw85_contact(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k, c + k);
+  });
+}
+
+int pw85_scene_overlap(long long n, double const *centres, double const *q,
+                       double const box[6], long long m, long long const *pairs, int *overlap,
+                       int *status, int nthreads) {
+  if (m == 0) return PW85_OK;
+  Box b;
+  if (!scene_args(n, centres, q, box, m, pairs, overlap, nthreads, b))
+    return PW85_ERR_INVALID_ARGUMENT;
+  return scene(n, centres, q, b, m, pairs, status, nthreads, 256,
+               [&](long long k, double const *r12, long long i, long long j) noexcept {
+                 int const res = r12 ? pw85_overlap(r12, q + 6 * i, q + 6 * j)
+                                     : PW85_ERR_INVALID_ARGUMENT;
+                 overlap[k] = res;
+                 return res < 0 ? res : PW85_OK;
+               });
+}
+
+int pw85_scene_contact_function(long long n, double const *centres, double const *q,
+                                double const box[6], long long m, long long const *pairs,
+                                int method, pw85_result *res, int *status, int nthreads) {
+  if (m == 0) return PW85_OK;
+  Box b;
+  if (!scene_args(n, centres, q, box, m, pairs, res, nthreads, b))
+    return PW85_ERR_INVALID_ARGUMENT;
+  if (!pw85::is_method(method)) return PW85_ERR_UNKNOWN_METHOD;
+  return scene(n, centres, q, b, m, pairs, status, nthreads, 64,
+               [&](long long k, double const *r12, long long i, long long j) noexcept {
+                 if (r12)
+                   return pw85_contact_function_method(r12, q + 6 * i, q + 6 * j, method, res + k);
+                 fill_nan_result(res + k, method);
+                 return int{PW85_ERR_INVALID_ARGUMENT};
+               });
+}
+
+int pw85_scene_contact(long long n, double const *centres, double const *q, double const box[6],
+                       long long m, long long const *pairs, pw85_contact_t *c, int *status,
+                       int nthreads) {
+  if (m == 0) return PW85_OK;
+  Box b;
+  if (!scene_args(n, centres, q, box, m, pairs, c, nthreads, b))
+    return PW85_ERR_INVALID_ARGUMENT;
+  return scene(n, centres, q, b, m, pairs, status, nthreads, 64,
                [&](long long k, double const *r12, long long i, long long j) noexcept {
                  if (r12) return pw85_contact(r12, q + 6 * i, q + 6 * j, c + k);
                  fill_nan_contact(c + k);

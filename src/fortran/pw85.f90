@@ -231,6 +231,103 @@ module pw85
       integer(c_int) :: res
     end function pw85_contact_batch
 
+    ! Per-pair arrays: r12(3, m), q1(6, m), q2(6, m); status(m) may be
+    ! omitted (NULL). nthreads is clamped to the CPUs and to m (docs/batch.md).
+    ! int pw85_overlap_pairs(long long m, double const *r12, double const *q1,
+    !     double const *q2, int *overlap, int *status, int nthreads)
+    function pw85_overlap_pairs(m, r12, q1, q2, overlap, status, nthreads) &
+        bind(C, name="pw85_overlap_pairs") result(res)
+      import :: c_double, c_int, c_long_long
+      integer(c_long_long), value :: m
+      real(c_double), intent(in) :: r12(3, *), q1(6, *), q2(6, *)
+      integer(c_int), intent(out) :: overlap(*)
+      integer(c_int), intent(out), optional :: status(*)
+      integer(c_int), value :: nthreads
+      integer(c_int) :: res
+    end function pw85_overlap_pairs
+
+    ! int pw85_contact_function_pairs(long long m, double const *r12,
+    !     double const *q1, double const *q2, int method, pw85_result *res,
+    !     int *status, int nthreads)
+    function pw85_contact_function_pairs(m, r12, q1, q2, method, res, status, nthreads) &
+        bind(C, name="pw85_contact_function_pairs") result(ret)
+      import :: c_double, c_int, c_long_long, pw85_result
+      integer(c_long_long), value :: m
+      real(c_double), intent(in) :: r12(3, *), q1(6, *), q2(6, *)
+      integer(c_int), value :: method
+      type(pw85_result), intent(out) :: res(*)
+      integer(c_int), intent(out), optional :: status(*)
+      integer(c_int), value :: nthreads
+      integer(c_int) :: ret
+    end function pw85_contact_function_pairs
+
+    ! int pw85_contact_pairs(long long m, double const *r12, double const *q1,
+    !     double const *q2, pw85_contact_t *c, int *status, int nthreads)
+    function pw85_contact_pairs(m, r12, q1, q2, c, status, nthreads) &
+        bind(C, name="pw85_contact_pairs") result(res)
+      import :: c_double, c_int, c_long_long, pw85_contact_t
+      integer(c_long_long), value :: m
+      real(c_double), intent(in) :: r12(3, *), q1(6, *), q2(6, *)
+      type(pw85_contact_t), intent(out) :: c(*)
+      integer(c_int), intent(out), optional :: status(*)
+      integer(c_int), value :: nthreads
+      integer(c_int) :: res
+    end function pw85_contact_pairs
+
+    ! Scenes: centres(3, n), q(6, n), pairs(2, m) holding 0-based (C)
+    ! indices; box(6) = [Lx, Ly, Lz, xy, xz, yz] (HOOMD/GSD convention) or
+    ! omitted (NULL: no periodicity); status(m) may be omitted.
+    ! int pw85_scene_overlap(long long n, double const *centres,
+    !     double const *q, double const box[6], long long m,
+    !     long long const *pairs, int *overlap, int *status, int nthreads)
+    function pw85_scene_overlap(n, centres, q, box, m, pairs, overlap, status, nthreads) &
+        bind(C, name="pw85_scene_overlap") result(res)
+      import :: c_double, c_int, c_long_long
+      integer(c_long_long), value :: n, m
+      real(c_double), intent(in) :: centres(3, *), q(6, *)
+      real(c_double), intent(in), optional :: box(6)
+      integer(c_long_long), intent(in) :: pairs(2, *)
+      integer(c_int), intent(out) :: overlap(*)
+      integer(c_int), intent(out), optional :: status(*)
+      integer(c_int), value :: nthreads
+      integer(c_int) :: res
+    end function pw85_scene_overlap
+
+    ! int pw85_scene_contact_function(long long n, double const *centres,
+    !     double const *q, double const box[6], long long m,
+    !     long long const *pairs, int method, pw85_result *res, int *status,
+    !     int nthreads)
+    function pw85_scene_contact_function(n, centres, q, box, m, pairs, method, res, status, &
+                                         nthreads) &
+        bind(C, name="pw85_scene_contact_function") result(ret)
+      import :: c_double, c_int, c_long_long, pw85_result
+      integer(c_long_long), value :: n, m
+      real(c_double), intent(in) :: centres(3, *), q(6, *)
+      real(c_double), intent(in), optional :: box(6)
+      integer(c_long_long), intent(in) :: pairs(2, *)
+      integer(c_int), value :: method
+      type(pw85_result), intent(out) :: res(*)
+      integer(c_int), intent(out), optional :: status(*)
+      integer(c_int), value :: nthreads
+      integer(c_int) :: ret
+    end function pw85_scene_contact_function
+
+    ! int pw85_scene_contact(long long n, double const *centres,
+    !     double const *q, double const box[6], long long m,
+    !     long long const *pairs, pw85_contact_t *c, int *status, int nthreads)
+    function pw85_scene_contact(n, centres, q, box, m, pairs, c, status, nthreads) &
+        bind(C, name="pw85_scene_contact") result(res)
+      import :: c_double, c_int, c_long_long, pw85_contact_t
+      integer(c_long_long), value :: n, m
+      real(c_double), intent(in) :: centres(3, *), q(6, *)
+      real(c_double), intent(in), optional :: box(6)
+      integer(c_long_long), intent(in) :: pairs(2, *)
+      type(pw85_contact_t), intent(out) :: c(*)
+      integer(c_int), intent(out), optional :: status(*)
+      integer(c_int), value :: nthreads
+      integer(c_int) :: res
+    end function pw85_scene_contact
+
     ! ---- Distance of closest approach (docs/dca.md) ----
     ! int pw85_dca_2d(double const u[2], double const q1[3],
     !                 double const q2[3], double *d)
