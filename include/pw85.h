@@ -136,10 +136,13 @@ PW85_API void pw85__cholesky_solve(double const l[PW85_SYM],
                                    double x[PW85_DIM]);
 
 /* Quadratic form of a spheroid of equatorial radius a, polar radius c and
- * unit axis of revolution n: writes Q = a^2 I + (c^2 - a^2) n n^T to q.
- * Returns nothing (pw85 1.0 signature). The caller is responsible for
- * |n| = 1. Fails on a or c not > 0, NaN or infinite values, n = 0 or n NULL:
- * q is then filled with NaN (q NULL: nothing is written). */
+ * axis of revolution n: writes Q = a^2 (I - m m^T) + c^2 m m^T, m = n / |n|,
+ * to q (for unit n, pw85 1.0's Q = a^2 I + (c^2 - a^2) n n^T), each entry
+ * within a few roundings of a^2 |(I - m m^T)_ij| + c^2 |(m m^T)_ij| at any
+ * aspect c / a. n need not be unit. Returns nothing (pw85 1.0 signature).
+ * Fails on a or c not > 0, NaN or infinite values, n = 0 or n NULL, and when
+ * Q is not representable (an entry beyond DBL_MAX, or a diagonal entry that
+ * rounds to 0): q is then filled with NaN (q NULL: nothing is written). */
 PW85_API void pw85_spheroid(double a, double c, double const n[PW85_DIM],
                             double q[PW85_SYM]);
 

@@ -73,6 +73,12 @@ void pw85_spheroid(double a, double c, double const n[PW85_DIM], double q[PW85_S
     return;
   }
   pw85::Sym3 const s = pw85::spheroid(a, c, pw85::load_vec3(n));
+  // An entry beyond DBL_MAX, or a diagonal entry below the smallest
+  // subnormal: Q is not representable (NaN, as for a bad argument).
+  if (!pw85::all_finite(s.a, PW85_SYM) || !(s[0] > 0.0 && s[3] > 0.0 && s[5] > 0.0)) {
+    fill_nan(q, PW85_SYM);
+    return;
+  }
   for (int i = 0; i < PW85_SYM; ++i) q[i] = s[i];
 }
 
