@@ -103,6 +103,11 @@
  * accuracy the method documents (or, for pw85_overlap(), the exact stage
  * ran out of capacity). */
 #define PW85_ERR_INACCURATE (-6)
+/* The result is out of the range of double (a quantity above DBL_MAX or
+ * below DBL_MIN, the smallest normal double): it is written rounded to the
+ * nearest double, so +Inf above DBL_MAX and a subnormal or 0 below DBL_MIN;
+ * the other outputs are as for PW85_OK. docs/stability.md lists where. */
+#define PW85_ERR_RANGE (-7)
 
 PW85_BEGIN_DECLS
 
@@ -369,8 +374,12 @@ typedef struct pw85_contact_t {
  * geometry is undefined), PW85_ERR_NOT_SPD (q1 or q2 not positive definite),
  * PW85_ERR_NO_CONVERGENCE (the contact-function solve or the contact point
  * did not converge; the fields hold the estimates, NaN where there is none)
- * or PW85_ERR_INACCURATE (every field written, but the error estimate of mu2
- * exceeds PW85_METHOD_DEFAULT's documented accuracy). On the first two
+ * PW85_ERR_INACCURATE (every field written, but the error estimate of mu2
+ * exceeds PW85_METHOD_DEFAULT's documented accuracy) or PW85_ERR_RANGE
+ * (every field written; mu2, dca or the largest |x0_i| is above DBL_MAX or
+ * below DBL_MIN, or |depth| above DBL_MAX: those rounded to the nearest
+ * double, +Inf or a subnormal or 0; docs/contact_geometry.md (G12)). Any r12
+ * and matrices of the double range are accepted. On the first two
  * errors every field of *c is NaN (when c is not NULL). The last bits may
  * depend on the CPU (top of this header). */
 PW85_API int pw85_contact(double const r12[PW85_DIM], double const q1[PW85_SYM],

@@ -18,6 +18,7 @@ static_assert(pw85::kNoConvergence == PW85_ERR_NO_CONVERGENCE, "");
 static_assert(pw85::kNotOrthonormal == PW85_ERR_NOT_ORTHONORMAL, "");
 static_assert(pw85::kUnknownMethod == PW85_ERR_UNKNOWN_METHOD, "");
 static_assert(pw85::kInaccurate == PW85_ERR_INACCURATE, "");
+static_assert(pw85::kRange == PW85_ERR_RANGE, "");
 static_assert(pw85::kDim == PW85_DIM && pw85::kSym == PW85_SYM, "");
 
 using pw85::capi::fill_nan;
@@ -42,6 +43,8 @@ const char *pw85_strerror(int status) {
       return "unknown method";
     case PW85_ERR_INACCURATE:
       return "result less accurate than the method documents";
+    case PW85_ERR_RANGE:
+      return "result out of the range of double";
     default:
       return "unknown status";
   }
