@@ -1,6 +1,7 @@
 // The extern "C" layer of libpw85: validate every argument, call the C++
 // core, turn the outcome into a status code. No logic of its own lives here.
 // The core is compiled without exceptions, so none can cross this boundary.
+#include <cfloat>
 #include <cmath>
 
 #include "pw85.h"
@@ -144,6 +145,11 @@ int pw85_contact_function(double const r12[PW85_DIM], double const q1[PW85_SYM],
                                     pw85::load_sym3(q2), res);
   out[0] = res.mu2;
   out[1] = res.lambda;
+  // mu^2 out of the range of double (written rounded: +Inf, subnormal or 0;
+  // r12 = 0 gives mu^2 = 0 exactly).
+  bool const r_zero = r12[0] == 0.0 && r12[1] == 0.0 && r12[2] == 0.0;
+  if (s == PW85_OK && !r_zero && !(res.mu2 >= DBL_MIN && res.mu2 <= DBL_MAX))
+    return PW85_ERR_RANGE;
   return s;
 }
 
