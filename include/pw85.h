@@ -189,11 +189,12 @@ PW85_API void pw85__residual(double lambda, double const r12[PW85_DIM],
  * r12 = c2 - c1 joins the centres; q1, q2 are the quadratic forms.
  * r12 = 0 gives mu^2 = 0 and lambda = 0.5 with PW85_OK.
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity),
- * PW85_ERR_NOT_SPD (q1 or q2 not positive definite) or
+ * PW85_ERR_NOT_SPD (q1 or q2 not positive definite),
  * PW85_ERR_NO_CONVERGENCE (Brent did not reach PW85_LAMBDA_ATOL in
  * PW85_MAX_ITER iterations and the refined residual does not show
  * convergence; the estimate is still written, mu^2 NaN if f could not be
- * evaluated). On the first two errors out is filled with NaN (when out is
+ * evaluated) or PW85_ERR_RANGE (mu^2 above DBL_MAX or below DBL_MIN,
+ * written rounded: +Inf, subnormal or 0). On the first two errors out is filled with NaN (when out is
  * not NULL). */
 PW85_API int pw85_contact_function(double const r12[PW85_DIM],
                                    double const q1[PW85_SYM],
@@ -239,9 +240,11 @@ PW85_API int pw85_dca_2d(double const u[2], double const q1[3],
  * safeguarded Newton iteration on f'. r12 = 0 gives mu^2 = 0, lambda = 0.5.
  * pw85_dca_2d(u) = 1 / sqrt(out[0]) for r12 = u / |u|.
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity),
- * PW85_ERR_NOT_SPD (q1 or q2 not positive definite) or
- * PW85_ERR_NO_CONVERGENCE (estimate still written). On the first two
- * errors out is filled with NaN (when out is not NULL). */
+ * PW85_ERR_NOT_SPD (q1 or q2 not positive definite),
+ * PW85_ERR_NO_CONVERGENCE (estimate still written) or PW85_ERR_RANGE
+ * (mu^2 above DBL_MAX or below DBL_MIN, written rounded: +Inf, subnormal or
+ * 0). On the first two errors out is filled with NaN (when out is not
+ * NULL). */
 PW85_API int pw85_contact_function_2d(double const r12[2], double const q1[3],
                                       double const q2[3], double out[2]);
 
@@ -325,6 +328,9 @@ typedef struct pw85_result {
  *                              documented relative accuracy times mu2;
  *   PW85_ERR_NO_CONVERGENCE    the iteration stopped early; best estimate
  *                              written (finite);
+ *   PW85_ERR_RANGE             mu2 above DBL_MAX or below DBL_MIN: written
+ *                              rounded (+Inf, subnormal or 0), lambda as
+ *                              for PW85_OK;
  *   PW85_ERR_INVALID_ARGUMENT  NULL pointer, NaN or infinite value;
  *   PW85_ERR_NOT_SPD           q1 or q2 not positive definite;
  *   PW85_ERR_UNKNOWN_METHOD    method is not a PW85_METHOD_* value.
