@@ -155,9 +155,11 @@ PW85_API void pw85_spheroid(double a, double c, double const n[PW85_DIM],
  * to q, where v_i = (axes[3i], axes[3i+1], axes[3i+2]) is the i-th row of
  * axes.
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL pointer, NaN or infinite
- * values), PW85_ERR_NOT_SPD (a radius <= 0) or PW85_ERR_NOT_ORTHONORMAL
- * (|axes axes^T - I| > 1e-10 entrywise). On error q is filled with NaN (when
- * q is not NULL). */
+ * values), PW85_ERR_NOT_SPD (a radius <= 0), PW85_ERR_NOT_ORTHONORMAL
+ * (|axes axes^T - I| > 1e-10 entrywise) or PW85_ERR_RANGE (a radius^2
+ * outside [DBL_MIN, DBL_MAX], i.e. a radius outside about
+ * [1.5e-154, 1.3e154]: Q not representable). On error q is filled with NaN
+ * (when q is not NULL). */
 PW85_API int pw85_ellipsoid(double const radii[PW85_DIM],
                             double const axes[PW85_DIM * PW85_DIM],
                             double q[PW85_SYM]);

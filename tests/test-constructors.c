@@ -192,6 +192,55 @@ static void test_ellipsoid_bad_input(void) {
   g_assert_cmpfloat(rel_error(q[5], 1e16), <=, 2 * DBL_EPSILON);
 }
 
+/* Scale sweep (docs/stability.md, "Accepted input ranges"): radii 2^k times
+ * fixed ones, k = -1074..1023. pw85_ellipsoid: PW85_OK with Q = 2^2k Q0
+ * within 2 eps per entry of its magnitude while every radius^2 lies in
+ * [DBL_MIN, DBL_MAX], PW85_ERR_RANGE (q NaN) otherwise. pw85_spheroid:
+ * 2^2k Q0 (rounded once where subnormal) or NaN exactly when an entry
+ * overflows or a diagonal entry rounds to 0. */
+static void test_ellipsoid_extreme_scale(void) {
+  double const axes[9] = {0.6, 0.8, 0, -0.8, 0.6, 0, 0, 0, 1};
+  double const r0[3] = {1.5, 0.75, 1.}, n[3] = {0.6, 0., 0.8};
+  double q0[6], s0[6];
+  g_assert_cmpint(pw85_ellipsoid(r0, axes, q0), ==, PW85_OK);
+  pw85_spheroid(1.5, 0.75, n, s0);
+  for (int k = -1074; k <= 1023; k++) {
+    double radii[3], q[6];
+    int in = 1;
+    for (int i = 0; i < 3; i++) {
+      radii[i] = ldexp(r0[i], k);
+      long double const a2 = (long double)radii[i] * radii[i];
+      in = in && a2 >= DBL_MIN && a2 <= DBL_MAX;
+    }
+    int const s = pw85_ellipsoid(radii, axes, q);
+    if (s != (in ? PW85_OK : PW85_ERR_RANGE)) g_error("pw85_ellipsoid, k = %d: status %d", k, s);
+    for (int i = 0; i < 6; i++) {
+      if (!in) {
+        g_assert_true(isnan(q[i]));
+        continue;
+      }
+      long double const ex = ldexpl(q0[i], 2 * k);
+      if (!(fabsl(q[i] - ex) <= 2 * DBL_EPSILON * ldexpl(2.25L, 2 * k) + 0x1p-1074))
+        g_error("pw85_ellipsoid, k = %d: Q[%d] = %g, expected %Lg", k, i, q[i], ex);
+    }
+    double sq[6];
+    pw85_spheroid(radii[0], radii[1], n, sq);
+    int overflow = 0, zero = 0;
+    for (int i = 0; i < 6; i++) overflow = overflow || fabsl(ldexpl(s0[i], 2 * k)) > DBL_MAX;
+    for (int i = 0; i < 6; i += (i == 0 ? 3 : 2))
+      zero = zero || ldexpl(s0[i], 2 * k) < 0x1p-1075L;
+    for (int i = 0; i < 6; i++) {
+      if (overflow || zero) {
+        g_assert_true(isnan(sq[i]));
+        continue;
+      }
+      long double const ex = ldexpl(s0[i], 2 * k);
+      if (!(fabsl(sq[i] - ex) <= 4 * DBL_EPSILON * ldexpl(2.25L, 2 * k) + 0x1p-1073))
+        g_error("pw85_spheroid, k = %d: Q[%d] = %g, expected %Lg", k, i, sq[i], ex);
+    }
+  }
+}
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   g_test_add_func("/pw85_spheroid/tutorial", test_spheroid_tutorial);
@@ -202,5 +251,6 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_ellipsoid/random", test_ellipsoid_random);
   g_test_add_func("/pw85_ellipsoid/matches_spheroid", test_ellipsoid_matches_spheroid);
   g_test_add_func("/pw85_ellipsoid/bad_input", test_ellipsoid_bad_input);
+  g_test_add_func("/pw85_ellipsoid/extreme_scale", test_ellipsoid_extreme_scale);
   return g_test_run();
 }

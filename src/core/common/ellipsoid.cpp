@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "common/fp.hpp"
 #include "common/magnitude.hpp"
 
 namespace pw85 {
@@ -53,8 +54,13 @@ Status ellipsoid(Vec3 const &radii, double const axes[9], double tol, Sym3 &q) n
       q[idx] = qij;
     }
   }
-  // Radii so large or small that a_k^2 overflows or underflows.
-  if (!all_finite(q.a, kSym)) return kInvalidArgument;
+  // Radii so large or small that a_k^2 leaves [DBL_MIN, DBL_MAX]: Q is not
+  // representable to the precision of double (kRange, status.hpp).
+  for (int k = 0; k < kDim; ++k) {
+    double const a2 = radii[k] * radii[k];
+    if (!(a2 >= kMinNormal && a2 <= kMaxDouble)) return kRange;
+  }
+  if (!all_finite(q.a, kSym)) return kRange;
   if (!is_positive_definite(q)) return kNotSpd;
   return kOk;
 }
