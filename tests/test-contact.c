@@ -324,6 +324,36 @@ static void test_extreme_scale(void) {
   }
   g_test_message("largest error: %.3g eps; %d scalings wrong", worst / DBL_EPSILON, bad);
   g_assert_cmpint(bad, ==, 0);
+  /* Magnitude ratio: Q2 -> 2^k Q2 (short significands: exact), statuses
+   * only; the PW85_OK range around k = 0 is reported (docs/stability.md). */
+  double const S1[6] = {1, 0.125, -0.25, 0.5, 0.0625, 0.375};
+  double const S2[6] = {0.25, -0.0625, 0, 1, 0.125, 0.5};
+  int lo = 0, hi = 0, n_other = 0;
+  for (int k = -1070; k <= 1023; k++) {
+    double q2[6];
+    for (int i = 0; i < 6; i++) q2[i] = ldexp(S2[i], k);
+    pw85_contact_t c;
+    int const s = pw85_contact(R, S1, q2, &c);
+    g_assert_true(s == PW85_OK || s == PW85_ERR_NO_CONVERGENCE || s == PW85_ERR_INACCURATE ||
+                  s == PW85_ERR_RANGE);
+    if (s != PW85_OK) n_other++;
+  }
+  for (int k = 0; k >= -1070; k--) {
+    double q2[6];
+    for (int i = 0; i < 6; i++) q2[i] = ldexp(S2[i], k);
+    pw85_contact_t c;
+    if (pw85_contact(R, S1, q2, &c) != PW85_OK) break;
+    lo = k;
+  }
+  for (int k = 0; k <= 1023; k++) {
+    double q2[6];
+    for (int i = 0; i < 6; i++) q2[i] = ldexp(S2[i], k);
+    pw85_contact_t c;
+    if (pw85_contact(R, S1, q2, &c) != PW85_OK) break;
+    hi = k;
+  }
+  g_test_message("ratio Q2 = 2^k Q2: PW85_OK for every k in [%d, %d]; %d of k = -1070..1023 "
+                 "with another status", lo, hi, n_other);
 }
 
 static void test_bad_input(void) {

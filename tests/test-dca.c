@@ -498,6 +498,34 @@ static void test_dca_extreme_scale(void) {
                  "contact_function_2d %.3g; %d wrong", worst[0] / DBL_EPSILON,
                  worst[1] / DBL_EPSILON, worst[2] / DBL_EPSILON, worst[3] / DBL_EPSILON, bad);
   g_assert_cmpint(bad, ==, 0);
+  /* Magnitude ratio: Q2 -> 2^k Q2, statuses only; the PW85_OK range around
+   * k = 0 of pw85_dca DEFAULT and ZHENG is reported (docs/stability.md). */
+  for (int fn = 0; fn < 2; fn++) {
+    int const method = fn ? PW85_METHOD_ZHENG : PW85_METHOD_DEFAULT;
+    int lo = 0, hi = 0, n_other = 0;
+    for (int k = -1070; k <= 1023; k++) {
+      double q2[6], d;
+      for (int i = 0; i < 6; i++) q2[i] = ldexp(Q2[i], k);
+      int const s = pw85_dca(U, Q1, q2, method, &d);
+      g_assert_true(s == PW85_OK || s == PW85_ERR_NO_CONVERGENCE || s == PW85_ERR_INACCURATE);
+      n_other += s != PW85_OK;
+    }
+    for (int k = 0; k >= -1070; k--) {
+      double q2[6], d;
+      for (int i = 0; i < 6; i++) q2[i] = ldexp(Q2[i], k);
+      if (pw85_dca(U, Q1, q2, method, &d) != PW85_OK) break;
+      lo = k;
+    }
+    for (int k = 0; k <= 1023; k++) {
+      double q2[6], d;
+      for (int i = 0; i < 6; i++) q2[i] = ldexp(Q2[i], k);
+      if (pw85_dca(U, Q1, q2, method, &d) != PW85_OK) break;
+      hi = k;
+    }
+    g_test_message("pw85_dca %s, ratio Q2 = 2^k Q2: PW85_OK for every k in [%d, %d]; %d of "
+                   "k = -1070..1023 with another status", fn ? "ZHENG" : "DEFAULT", lo, hi,
+                   n_other);
+  }
 }
 
 int main(int argc, char **argv) {

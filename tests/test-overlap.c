@@ -288,6 +288,30 @@ static void test_extreme_scale(void) {
     }
   }
   g_assert_cmpint(bad, ==, 0);
+  /* Magnitude ratio: Q2 -> 2^k Q2, a verdict or PW85_ERR_INACCURATE; the
+   * verdict range around k = 0 is reported (docs/stability.md). */
+  int lo = 0, hi = 0, n_inaccurate = 0;
+  for (int k = -1070; k <= 1023; k++) {
+    double q2[6];
+    for (int i = 0; i < 6; i++) q2[i] = ldexp(S2[i], k);
+    int const v = pw85_overlap(R, S1, q2);
+    g_assert_true(v == 0 || v == 1 || v == PW85_ERR_INACCURATE);
+    n_inaccurate += v == PW85_ERR_INACCURATE;
+  }
+  for (int k = 0; k >= -1070; k--) {
+    double q2[6];
+    for (int i = 0; i < 6; i++) q2[i] = ldexp(S2[i], k);
+    if (pw85_overlap(R, S1, q2) < 0) break;
+    lo = k;
+  }
+  for (int k = 0; k <= 1023; k++) {
+    double q2[6];
+    for (int i = 0; i < 6; i++) q2[i] = ldexp(S2[i], k);
+    if (pw85_overlap(R, S1, q2) < 0) break;
+    hi = k;
+  }
+  g_test_message("ratio Q2 = 2^k Q2: a verdict for every k in [%d, %d]; %d of k = -1070..1023 "
+                 "PW85_ERR_INACCURATE", lo, hi, n_inaccurate);
 }
 
 static void test_bad_input(void) {
