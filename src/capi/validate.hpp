@@ -20,6 +20,9 @@ inline void fill_nan(double *p, int n) noexcept {
 // of the unscaled test wherever that neither underflows nor overflows, and
 // the right one for matrices of subnormal or huge entries.
 inline bool spd_scaled(double const *q) noexcept {
+  // Common case first: max |q_ij| in [2^-500, 2^500], tested unscaled.
+  double const m = max_abs(q, kSym);
+  if (m >= 0x1p-500 && m <= 0x1p500) return is_positive_definite(load_sym3(q));
   int e = max_exponent(q, kSym);
   e += e & 1;
   Sym3 s;

@@ -241,7 +241,8 @@ Status contact_geometry(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in,
   // x0 = 2^er x0' (G1), dca = 2^(eq/2) dca' (G4). Done when r or the
   // matrices lie outside (kSafeLo, kSafeHi), where the intermediate s^T Q s
   // ~ |r|^2 / |Q| could overflow or underflow.
-  double const rmax = max_abs(r_in), qmax = std::fmax(max_abs(q1_in.a, kSym), max_abs(q2_in.a, kSym));
+  double const rmax = max_abs(r_in.x, kDim), qm1 = max_abs(q1_in.a, kSym),
+               qm2 = max_abs(q2_in.a, kSym), qmax = qm1 > qm2 ? qm1 : qm2;
   bool const scale = !(rmax > kSafeLo && rmax < kSafeHi && qmax > kSafeLo && qmax < kSafeHi);
   int er = 0, eq = 0;
   Vec3 r = r_in;
