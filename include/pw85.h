@@ -169,14 +169,18 @@ PW85_API int pw85_ellipsoid(double const radii[PW85_DIM],
  *     Q = (1 - lambda) Q1 + lambda Q2,
  * evaluated through a Cholesky decomposition of Q. params holds r12, q1 and
  * q2 one after the other (15 doubles). The signature is pw85 1.0's and
- * matches gsl_function. Fails with NaN for NULL params, a NaN or infinite
- * value, or a Q that is not positive definite. */
+ * matches gsl_function. Inputs of any magnitude are rescaled by powers of two
+ * (exact); a value beyond the double range is returned rounded (-Inf, or a
+ * subnormal or 0). Fails with NaN for NULL params, a NaN or infinite value,
+ * or a Q that is not positive definite. */
 PW85_API double pw85_f_neg(double lambda, double const *params);
 
 /* Residual g(lambda) = mu2^2 - mu1^2 of the Newton refinement of
  * pw85_contact_function() (pw85 1.0 documentation, chapter 5,
  * eqs. (4)-(5)). Writes
  *     out[0] = f(lambda), out[1] = g(lambda), out[2] = g'(lambda).
+ * Inputs of any magnitude are rescaled by powers of two (exact); values
+ * beyond the double range are written rounded (+-Inf, subnormal or 0).
  * Returns nothing (pw85 1.0 signature). Fails on a NULL pointer, a NaN or
  * infinite value, or a Q(lambda) that is not positive definite: out is then
  * filled with NaN (out NULL: nothing is written). */
