@@ -104,6 +104,11 @@
  * accuracy the method documents (or, for pw85_overlap(), the exact stage
  * ran out of capacity). */
 #define PW85_ERR_INACCURATE (-6)
+/* The result is out of the range of double (a quantity above DBL_MAX or
+ * below DBL_MIN, the smallest normal double): it is written rounded to the
+ * nearest double, so +Inf above DBL_MAX and a subnormal or 0 below DBL_MIN;
+ * the other outputs are as for PW85_OK. docs/stability.md lists where. */
+#define PW85_ERR_RANGE (-7)
 
 PW85_BEGIN_DECLS
 
@@ -137,10 +142,13 @@ PW85_API void pw85__cholesky_solve(double const l[PW85_SYM],
                                    double x[PW85_DIM]);
 
 /* Quadratic form of a spheroid of equatorial radius a, polar radius c and
- * unit axis of revolution n: writes Q = a^2 I + (c^2 - a^2) n n^T to q.
- * Returns nothing (pw85 1.0 signature). The caller is responsible for
- * |n| = 1. Fails on a or c not > 0, NaN or infinite values, n = 0 or n NULL:
- * q is then filled with NaN (q NULL: nothing is written). */
+ * axis of revolution n: writes Q = a^2 (I - m m^T) + c^2 m m^T, m = n / |n|,
+ * to q (for unit n, pw85 1.0's Q = a^2 I + (c^2 - a^2) n n^T), each entry
+ * within a few roundings of a^2 |(I - m m^T)_ij| + c^2 |(m m^T)_ij| at any
+ * aspect c / a. n need not be unit. Returns nothing (pw85 1.0 signature).
+ * Fails on a or c not > 0, NaN or infinite values, n = 0 or n NULL, and when
+ * Q is not representable (an entry beyond DBL_MAX, or a diagonal entry that
+ * rounds to 0): q is then filled with NaN (q NULL: nothing is written). */
 PW85_API void pw85_spheroid(double a, double c, double const n[PW85_DIM],
                             double q[PW85_SYM]);
 
@@ -148,9 +156,11 @@ PW85_API void pw85_spheroid(double a, double c, double const n[PW85_DIM],
  * to q, where v_i = (axes[3i], axes[3i+1], axes[3i+2]) is the i-th row of
  * axes.
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL pointer, NaN or infinite
- * values), PW85_ERR_NOT_SPD (a radius <= 0) or PW85_ERR_NOT_ORTHONORMAL
- * (|axes axes^T - I| > 1e-10 entrywise). On error q is filled with NaN (when
- * q is not NULL). */
+ * values), PW85_ERR_NOT_SPD (a radius <= 0), PW85_ERR_NOT_ORTHONORMAL
+ * (|axes axes^T - I| > 1e-10 entrywise) or PW85_ERR_RANGE (a radius^2
+ * outside [DBL_MIN, DBL_MAX], i.e. a radius outside about
+ * [1.5e-154, 1.3e154]: Q not representable). On error q is filled with NaN
+ * (when q is not NULL). */
 PW85_API int pw85_ellipsoid(double const radii[PW85_DIM],
                             double const axes[PW85_DIM * PW85_DIM],
                             double q[PW85_SYM]);
@@ -160,14 +170,18 @@ PW85_API int pw85_ellipsoid(double const radii[PW85_DIM],
  *     Q = (1 - lambda) Q1 + lambda Q2,
  * evaluated through a Cholesky decomposition of Q. params holds r12, q1 and
  * q2 one after the other (15 doubles). The signature is pw85 1.0's and
- * matches gsl_function. Fails with NaN for NULL params, a NaN or infinite
- * value, or a Q that is not positive definite. */
+ * matches gsl_function. Inputs of any magnitude are rescaled by powers of two
+ * (exact); a value beyond the double range is returned rounded (-Inf, or a
+ * subnormal or 0). Fails with NaN for NULL params, a NaN or infinite value,
+ * or a Q that is not positive definite. */
 PW85_API double pw85_f_neg(double lambda, double const *params);
 
 /* Residual g(lambda) = mu2^2 - mu1^2 of the Newton refinement of
  * pw85_contact_function() (pw85 1.0 documentation, chapter 5,
  * eqs. (4)-(5)). Writes
  *     out[0] = f(lambda), out[1] = g(lambda), out[2] = g'(lambda).
+ * Inputs of any magnitude are rescaled by powers of two (exact); values
+ * beyond the double range are written rounded (+-Inf, subnormal or 0).
  * Returns nothing (pw85 1.0 signature). Fails on a NULL pointer, a NaN or
  * infinite value, or a Q(lambda) that is not positive definite: out is then
  * filled with NaN (out NULL: nothing is written). */
@@ -182,11 +196,12 @@ PW85_API void pw85__residual(double lambda, double const r12[PW85_DIM],
  * r12 = c2 - c1 joins the centres; q1, q2 are the quadratic forms.
  * r12 = 0 gives mu^2 = 0 and lambda = 0.5 with PW85_OK.
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity),
- * PW85_ERR_NOT_SPD (q1 or q2 not positive definite) or
+ * PW85_ERR_NOT_SPD (q1 or q2 not positive definite),
  * PW85_ERR_NO_CONVERGENCE (Brent did not reach PW85_LAMBDA_ATOL in
  * PW85_MAX_ITER iterations and the refined residual does not show
  * convergence; the estimate is still written, mu^2 NaN if f could not be
- * evaluated). On the first two errors out is filled with NaN (when out is
+ * evaluated) or PW85_ERR_RANGE (mu^2 above DBL_MAX or below DBL_MIN,
+ * written rounded: +Inf, subnormal or 0). On the first two errors out is filled with NaN (when out is
  * not NULL). */
 PW85_API int pw85_contact_function(double const r12[PW85_DIM],
                                    double const q1[PW85_SYM],
@@ -232,9 +247,11 @@ PW85_API int pw85_dca_2d(double const u[2], double const q1[3],
  * safeguarded Newton iteration on f'. r12 = 0 gives mu^2 = 0, lambda = 0.5.
  * pw85_dca_2d(u) = 1 / sqrt(out[0]) for r12 = u / |u|.
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity),
- * PW85_ERR_NOT_SPD (q1 or q2 not positive definite) or
- * PW85_ERR_NO_CONVERGENCE (estimate still written). On the first two
- * errors out is filled with NaN (when out is not NULL). */
+ * PW85_ERR_NOT_SPD (q1 or q2 not positive definite),
+ * PW85_ERR_NO_CONVERGENCE (estimate still written) or PW85_ERR_RANGE
+ * (mu^2 above DBL_MAX or below DBL_MIN, written rounded: +Inf, subnormal or
+ * 0). On the first two errors out is filled with NaN (when out is not
+ * NULL). */
 PW85_API int pw85_contact_function_2d(double const r12[2], double const q1[3],
                                       double const q2[3], double out[2]);
 
@@ -318,6 +335,9 @@ typedef struct pw85_result {
  *                              documented relative accuracy times mu2;
  *   PW85_ERR_NO_CONVERGENCE    the iteration stopped early; best estimate
  *                              written (finite);
+ *   PW85_ERR_RANGE             mu2 above DBL_MAX or below DBL_MIN: written
+ *                              rounded (+Inf, subnormal or 0), lambda as
+ *                              for PW85_OK;
  *   PW85_ERR_INVALID_ARGUMENT  NULL pointer, NaN or infinite value;
  *   PW85_ERR_NOT_SPD           q1 or q2 not positive definite;
  *   PW85_ERR_UNKNOWN_METHOD    method is not a PW85_METHOD_* value.
@@ -367,8 +387,12 @@ typedef struct pw85_contact_t {
  * geometry is undefined), PW85_ERR_NOT_SPD (q1 or q2 not positive definite),
  * PW85_ERR_NO_CONVERGENCE (the contact-function solve or the contact point
  * did not converge; the fields hold the estimates, NaN where there is none)
- * or PW85_ERR_INACCURATE (every field written, but the error estimate of mu2
- * exceeds PW85_METHOD_DEFAULT's documented accuracy). On the first two
+ * PW85_ERR_INACCURATE (every field written, but the error estimate of mu2
+ * exceeds PW85_METHOD_DEFAULT's documented accuracy) or PW85_ERR_RANGE
+ * (every field written; mu2, dca or the largest |x0_i| is above DBL_MAX or
+ * below DBL_MIN, or |depth| above DBL_MAX: those rounded to the nearest
+ * double, +Inf or a subnormal or 0; docs/contact_geometry.md (G12)). Any r12
+ * and matrices of the double range are accepted. On the first two
  * errors every field of *c is NaN (when c is not NULL). The last bits may
  * depend on the CPU (top of this header). */
 PW85_API int pw85_contact(double const r12[PW85_DIM], double const q1[PW85_SYM],

@@ -533,6 +533,74 @@ static void test_special(void) {
   refdata_pairs_free(p);
 }
 
+/* Exact power-of-two scalings over the whole double range (docs/stability.md,
+ * "Accepted input ranges"): r -> 2^kr r, Q -> 2^kq Q give mu2 -> 2^(2 kr - kq)
+ * mu2 and the same lambda. Reference: the unscaled call (inputs exact at
+ * both scales), scaled exactly in long double. Every method and
+ * pw85_contact_function must return that (PW85_OK), or PW85_ERR_RANGE with
+ * mu2 rounded to the nearest double when it is out of [DBL_MIN, DBL_MAX]. */
+static int method_scaled_ok(const double R[3], const double Q1[6], const double Q2[6], int method,
+                            int kr, int kq, double *worst) {
+  double r[3], q1[6], q2[6];
+  for (int i = 0; i < 3; i++) {
+    r[i] = ldexp(R[i], kr);
+    if (ldexp(r[i], -kr) != R[i]) return 1;
+  }
+  for (int i = 0; i < 6; i++) {
+    q1[i] = ldexp(Q1[i], kq);
+    q2[i] = ldexp(Q2[i], kq);
+    if (ldexp(q1[i], -kq) != Q1[i] || ldexp(q2[i], -kq) != Q2[i]) return 1;
+  }
+  double mu2_ref, lambda_ref, mu2, lambda;
+  int s;
+  if (method < 0) { /* pw85_contact_function */
+    double o0[2], o[2];
+    g_assert_cmpint(pw85_contact_function(R, Q1, Q2, o0), ==, PW85_OK);
+    s = pw85_contact_function(r, q1, q2, o);
+    mu2_ref = o0[0], lambda_ref = o0[1], mu2 = o[0], lambda = o[1];
+  } else {
+    pw85_result res0, res;
+    g_assert_cmpint(pw85_contact_function_method(R, Q1, Q2, method, &res0), ==, PW85_OK);
+    s = pw85_contact_function_method(r, q1, q2, method, &res);
+    mu2_ref = res0.mu2, lambda_ref = res0.lambda, mu2 = res.mu2, lambda = res.lambda;
+  }
+  long double const ex = ldexpl(mu2_ref, 2 * kr - kq);
+  int const range = !(ex >= DBL_MIN && ex <= DBL_MAX);
+  double e = fabs(lambda - lambda_ref);
+  if (!(isinf(mu2) && ex > DBL_MAX) && !(fabsl(mu2 - ex) <= 0x1p-1074))
+    e = fmax(e, (double)(fabsl(mu2 - ex) / ex));
+  *worst = fmax(*worst, e);
+  if (s != (range ? PW85_ERR_RANGE : PW85_OK) || !(e <= 8 * DBL_EPSILON)) {
+    g_test_message("method %d kr = %d kq = %d: status %d, mu2 %.17g (%.17Lg), lambda %.17g "
+                   "(%.17g)", method, kr, kq, s, mu2, ex, lambda, lambda_ref);
+    return 0;
+  }
+  return 1;
+}
+
+static void test_method_extreme_scale(void) {
+  double const R[3] = {1.25, -0.5, 0.75};
+  double const Q1[6] = {1, 0.1, -0.2, 0.5, 0.05, 0.3};
+  double const Q2[6] = {0.2, -0.05, 0.01, 0.9, 0.1, 0.4};
+  double const S1[6] = {1, 0.125, -0.25, 0.5, 0.0625, 0.375};
+  double const S2[6] = {0.25, -0.0625, 0, 1, 0.125, 0.5};
+  struct { const double *q1, *q2; } const pairs[] = {{Q1, Q2}, {S1, S2}};
+  int const methods[] = {-1, PW85_METHOD_DEFAULT, PW85_METHOD_BRENT, PW85_METHOD_NEWTON,
+                         PW85_METHOD_RATIONAL, PW85_METHOD_ZHENG};
+  int bad = 0;
+  double worst = 0;
+  for (size_t p = 0; p < G_N_ELEMENTS(pairs); p++)
+    for (size_t m = 0; m < G_N_ELEMENTS(methods); m++)
+      for (int k = -1074; k <= 1023; k++) {
+        bad += !method_scaled_ok(R, pairs[p].q1, pairs[p].q2, methods[m], k, 0, &worst);
+        bad += !method_scaled_ok(R, pairs[p].q1, pairs[p].q2, methods[m], 0, k, &worst);
+        bad += !method_scaled_ok(R, pairs[p].q1, pairs[p].q2, methods[m], k, 2 * k, &worst);
+      }
+  g_test_message("largest deviation from the scaled reference: %.3g eps; %d wrong",
+                 worst / DBL_EPSILON, bad);
+  g_assert_cmpint(bad, ==, 0);
+}
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   g_test_add_func("/pw85_contact_function/tutorial", test_tutorial);
@@ -557,5 +625,6 @@ int main(int argc, char **argv) {
     g_free(path);
   }
   g_test_add_func("/pw85_contact_function/reference/special", test_special);
+  g_test_add_func("/pw85_contact_function_method/extreme_scale", test_method_extreme_scale);
   return g_test_run();
 }

@@ -241,6 +241,121 @@ static void test_tangency_sign(void) {
   }
 }
 
+/* Exact power-of-two scalings r -> 2^kr r, Q -> 2^kq Q over the whole double
+ * range: lambda and n are unchanged, mu2 scales by 2^(2 kr - kq), x0 by
+ * 2^kr, dca by 2^(kq/2) (docs/contact_geometry.md, (G12)); depth = dca - |r|.
+ * The reference is pw85_contact on the unscaled inputs (r rounded at the
+ * scale 2^kr, then scaled back exactly), scaled exactly in long double. A
+ * result out of the range of double must come with PW85_ERR_RANGE and the
+ * value rounded to the nearest double. */
+static int out_of_range(long double v) { return !(fabsl(v) >= DBL_MIN && fabsl(v) <= DBL_MAX); }
+
+static int check_scaled(const double R[3], const double Q1[6], const double Q2[6], int kr,
+                        int kq, double *worst) {
+  double r[3], rt[3], q1[6], q2[6];
+  for (int i = 0; i < 3; i++) {
+    r[i] = ldexp(R[i], kr);
+    rt[i] = ldexp(r[i], -kr);
+  }
+  if (rt[0] == 0. && rt[1] == 0. && rt[2] == 0.) return 1;
+  for (int i = 0; i < 6; i++) {
+    q1[i] = ldexp(Q1[i], kq);
+    q2[i] = ldexp(Q2[i], kq);
+    if (ldexp(q1[i], -kq) != Q1[i] || ldexp(q2[i], -kq) != Q2[i]) return 1; /* not exact */
+  }
+  pw85_contact_t ref, c;
+  g_assert_cmpint(pw85_contact(rt, Q1, Q2, &ref), ==, PW85_OK);
+  int const s = pw85_contact(r, q1, q2, &c);
+  long double const scale_dca = sqrtl(ldexpl(1.0L, kq));
+  long double const mu2 = ldexpl(ref.mu2, 2 * kr - kq);
+  long double const dca = ref.dca * scale_dca;
+  long double const nr = ldexpl(sqrtl((long double)rt[0] * rt[0] + (long double)rt[1] * rt[1] +
+                                      (long double)rt[2] * rt[2]), kr);
+  long double const depth = dca - nr;
+  long double x0[3], xmax = 0;
+  for (int i = 0; i < 3; i++) {
+    x0[i] = ldexpl(ref.x0[i], kr);
+    xmax = fmaxl(xmax, fabsl(x0[i]));
+  }
+  int const range = out_of_range(mu2) || out_of_range(dca) || out_of_range(xmax) ||
+                    !(fabsl(depth) <= DBL_MAX);
+  double const tol = 4 * DBL_EPSILON, tiny = 0x1p-1074;
+  int ok = s == (range ? PW85_ERR_RANGE : PW85_OK);
+  double e_mu2 = (double)(fabsl(c.mu2 - mu2) / mu2);
+  if ((isinf(c.mu2) && mu2 > DBL_MAX) || fabsl(c.mu2 - mu2) <= tiny) e_mu2 = 0;
+  double e = fmax(e_mu2, fabs(c.lambda - ref.lambda));
+  for (int i = 0; i < 3; i++) {
+    e = fmax(e, fabs(c.n[i] - ref.n[i]));
+    double const ex = (double)(fabsl(c.x0[i] - x0[i]) / xmax);
+    e = fmax(e, fabsl(c.x0[i] - x0[i]) <= tiny ? 0. : ex); /* subnormal: one rounding */
+  }
+  e = fmax(e, (double)(fabsl(c.dca - dca) / dca));
+  if (fabsl(depth) <= DBL_MAX)
+    e = fmax(e, (double)(fabsl(c.depth - depth) / (dca + nr)));
+  *worst = fmax(*worst, e);
+  ok = ok && e <= tol;
+  if (!ok)
+    g_test_message("kr = %d kq = %d: status %d, mu2 %.17g (%.17Lg), dca %.17g (%.17Lg), n (%g, %g, "
+                   "%g), error %.3g eps", kr, kq, s, c.mu2, mu2, c.dca, dca, c.n[0], c.n[1], c.n[2],
+                   e / DBL_EPSILON);
+  return ok;
+}
+
+static void test_extreme_scale(void) {
+  double const R[3] = {1.3, -0.4, 0.7};
+  double const Q1[6] = {1, 0.1, -0.2, 0.5, 0.05, 0.3};
+  double const Q2[6] = {0.2, -0.05, 0.01, 0.9, 0.1, 0.4};
+  /* An elongated pair: semi-axes 1e-2..1e2 (make_q of fixed axes). */
+  double const radii1[3] = {100., 1., 0.01}, radii2[3] = {0.05, 3., 20.};
+  double const axes[9] = {0.6, 0.8, 0., -0.8, 0.6, 0., 0., 0., 1.};
+  double const axes2[9] = {1., 0., 0., 0., 0.6, 0.8, 0., -0.8, 0.6};
+  double E1[6], E2[6];
+  make_q(radii1, axes, E1);
+  make_q(radii2, axes2, E2);
+  struct { const double *q1, *q2; } const pairs[] = {{Q1, Q2}, {E1, E2}};
+  int bad = 0;
+  double worst = 0.;
+  for (size_t p = 0; p < G_N_ELEMENTS(pairs); p++) {
+    for (int k = -1074; k <= 1023; k++) {
+      bad += !check_scaled(R, pairs[p].q1, pairs[p].q2, k, 0, &worst);    /* r alone */
+      bad += !check_scaled(R, pairs[p].q1, pairs[p].q2, 0, k, &worst);    /* Q alone */
+      bad += !check_scaled(R, pairs[p].q1, pairs[p].q2, k, 2 * k, &worst); /* both: mu2 fixed */
+    }
+  }
+  g_test_message("largest error: %.3g eps; %d scalings wrong", worst / DBL_EPSILON, bad);
+  g_assert_cmpint(bad, ==, 0);
+  /* Magnitude ratio: Q2 -> 2^k Q2 (short significands: exact), statuses
+   * only; the PW85_OK range around k = 0 is reported (docs/stability.md). */
+  double const S1[6] = {1, 0.125, -0.25, 0.5, 0.0625, 0.375};
+  double const S2[6] = {0.25, -0.0625, 0, 1, 0.125, 0.5};
+  int lo = 0, hi = 0, n_other = 0;
+  for (int k = -1070; k <= 1023; k++) {
+    double q2[6];
+    for (int i = 0; i < 6; i++) q2[i] = ldexp(S2[i], k);
+    pw85_contact_t c;
+    int const s = pw85_contact(R, S1, q2, &c);
+    g_assert_true(s == PW85_OK || s == PW85_ERR_NO_CONVERGENCE || s == PW85_ERR_INACCURATE ||
+                  s == PW85_ERR_RANGE);
+    if (s != PW85_OK) n_other++;
+  }
+  for (int k = 0; k >= -1070; k--) {
+    double q2[6];
+    for (int i = 0; i < 6; i++) q2[i] = ldexp(S2[i], k);
+    pw85_contact_t c;
+    if (pw85_contact(R, S1, q2, &c) != PW85_OK) break;
+    lo = k;
+  }
+  for (int k = 0; k <= 1023; k++) {
+    double q2[6];
+    for (int i = 0; i < 6; i++) q2[i] = ldexp(S2[i], k);
+    pw85_contact_t c;
+    if (pw85_contact(R, S1, q2, &c) != PW85_OK) break;
+    hi = k;
+  }
+  g_test_message("ratio Q2 = 2^k Q2: PW85_OK for every k in [%d, %d]; %d of k = -1070..1023 "
+                 "with another status", lo, hi, n_other);
+}
+
 static void test_bad_input(void) {
   double q[6] = {1, 0, 0, 1, 0, 1}, r[3] = {1, 0, 0}, zero[3] = {0, 0, 0};
   double notspd[6] = {1, 2, 0, 1, 0, 1};
@@ -260,5 +375,6 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact/reference/near_contact", test_near_contact);
   g_test_add_func("/pw85_contact/tangency/depth-sign", test_tangency_sign);
   g_test_add_func("/pw85_contact/bad-input", test_bad_input);
+  g_test_add_func("/pw85_contact/extreme_scale", test_extreme_scale);
   return g_test_run();
 }

@@ -420,6 +420,114 @@ static void test_dca_ex_theta_tol(void) {
   g_rand_free(rng);
 }
 
+/* Exact power-of-two scalings over the whole double range (docs/stability.md,
+ * "Accepted input ranges"): u -> 2^ku u leaves d unchanged, Q -> 2^kq Q
+ * multiplies it by 2^(kq/2); for the 2D contact function r -> 2^kr r,
+ * Q -> 2^kq Q multiply mu^2 by 2^(2 kr - kq). Reference: the unscaled call,
+ * scaled exactly in long double; inputs exact at both scales. Expected:
+ * PW85_OK within 8 eps, or PW85_ERR_RANGE with the value rounded to the
+ * nearest double when it is out of [DBL_MIN, DBL_MAX]. fn: 0 pw85_dca
+ * DEFAULT, 1 pw85_dca ZHENG, 2 pw85_dca_2d, 3 pw85_contact_function_2d. */
+static int scale_exact(const double *x, int n, int k, double *y) {
+  for (int i = 0; i < n; i++) {
+    y[i] = ldexp(x[i], k);
+    if (ldexp(y[i], -k) != x[i]) return 0;
+  }
+  return 1;
+}
+
+static int dca_scaled_ok(int fn, const double *U, const double *Q1, const double *Q2, int ku,
+                         int kq, double *worst) {
+  int const dim = fn < 2 ? 3 : 2, sym = fn < 2 ? 6 : 3;
+  double u[3], q1[6], q2[6];
+  if (!scale_exact(U, dim, ku, u) || !scale_exact(Q1, sym, kq, q1) ||
+      !scale_exact(Q2, sym, kq, q2))
+    return 1;
+  double v0 = 0, v = 0, out0[2], out[2];
+  int s0 = 0, s = 0;
+  long double ex;
+  switch (fn) {
+    case 0:
+    case 1:
+      s0 = pw85_dca(U, Q1, Q2, fn ? PW85_METHOD_ZHENG : PW85_METHOD_DEFAULT, &v0);
+      s = pw85_dca(u, q1, q2, fn ? PW85_METHOD_ZHENG : PW85_METHOD_DEFAULT, &v);
+      ex = v0 * sqrtl(ldexpl(1.0L, kq));
+      break;
+    case 2:
+      s0 = pw85_dca_2d(U, Q1, Q2, &v0);
+      s = pw85_dca_2d(u, q1, q2, &v);
+      ex = v0 * sqrtl(ldexpl(1.0L, kq));
+      break;
+    default:
+      s0 = pw85_contact_function_2d(U, Q1, Q2, out0);
+      s = pw85_contact_function_2d(u, q1, q2, out);
+      v0 = out0[0], v = out[0];
+      ex = ldexpl(v0, 2 * ku - kq);
+      break;
+  }
+  g_assert_cmpint(s0, ==, PW85_OK);
+  int const range = !(ex >= DBL_MIN && ex <= DBL_MAX);
+  double e = 0;
+  if (!(isinf(v) && ex > DBL_MAX) && !(fabsl(v - ex) <= 0x1p-1074))
+    e = (double)(fabsl(v - ex) / ex);
+  if (fn == 3) e = fmax(e, fabs(out[1] - out0[1]));
+  *worst = fmax(*worst, e);
+  if (s != (range ? PW85_ERR_RANGE : PW85_OK) || !(e <= 8 * DBL_EPSILON)) {
+    g_test_message("fn %d ku = %d kq = %d: status %d, value %.17g (%.17Lg)", fn, ku, kq, s, v, ex);
+    return 0;
+  }
+  return 1;
+}
+
+static void test_dca_extreme_scale(void) {
+  double const U[3] = {1.25, -0.5, 0.75};
+  double const Q1[6] = {1, 0.125, -0.25, 0.5, 0.0625, 0.375};
+  double const Q2[6] = {0.25, -0.0625, 0, 1, 0.125, 0.5};
+  double const U2[2] = {1.25, -0.5}, P1[3] = {1, 0.125, 0.5}, P2[3] = {0.25, -0.0625, 1};
+  int bad = 0;
+  double worst[4] = {0, 0, 0, 0};
+  for (int fn = 0; fn < 4; fn++) {
+    const double *u = fn < 2 ? U : U2, *q1 = fn < 2 ? Q1 : P1, *q2 = fn < 2 ? Q2 : P2;
+    for (int k = -1074; k <= 1023; k++) {
+      bad += !dca_scaled_ok(fn, u, q1, q2, k, 0, &worst[fn]);
+      bad += !dca_scaled_ok(fn, u, q1, q2, 0, k, &worst[fn]);
+      bad += !dca_scaled_ok(fn, u, q1, q2, k, 2 * k, &worst[fn]);
+    }
+  }
+  g_test_message("largest deviation (eps): dca DEFAULT %.3g, ZHENG %.3g, dca_2d %.3g, "
+                 "contact_function_2d %.3g; %d wrong", worst[0] / DBL_EPSILON,
+                 worst[1] / DBL_EPSILON, worst[2] / DBL_EPSILON, worst[3] / DBL_EPSILON, bad);
+  g_assert_cmpint(bad, ==, 0);
+  /* Magnitude ratio: Q2 -> 2^k Q2, statuses only; the PW85_OK range around
+   * k = 0 of pw85_dca DEFAULT and ZHENG is reported (docs/stability.md). */
+  for (int fn = 0; fn < 2; fn++) {
+    int const method = fn ? PW85_METHOD_ZHENG : PW85_METHOD_DEFAULT;
+    int lo = 0, hi = 0, n_other = 0;
+    for (int k = -1070; k <= 1023; k++) {
+      double q2[6], d;
+      for (int i = 0; i < 6; i++) q2[i] = ldexp(Q2[i], k);
+      int const s = pw85_dca(U, Q1, q2, method, &d);
+      g_assert_true(s == PW85_OK || s == PW85_ERR_NO_CONVERGENCE || s == PW85_ERR_INACCURATE);
+      n_other += s != PW85_OK;
+    }
+    for (int k = 0; k >= -1070; k--) {
+      double q2[6], d;
+      for (int i = 0; i < 6; i++) q2[i] = ldexp(Q2[i], k);
+      if (pw85_dca(U, Q1, q2, method, &d) != PW85_OK) break;
+      lo = k;
+    }
+    for (int k = 0; k <= 1023; k++) {
+      double q2[6], d;
+      for (int i = 0; i < 6; i++) q2[i] = ldexp(Q2[i], k);
+      if (pw85_dca(U, Q1, q2, method, &d) != PW85_OK) break;
+      hi = k;
+    }
+    g_test_message("pw85_dca %s, ratio Q2 = 2^k Q2: PW85_OK for every k in [%d, %d]; %d of "
+                   "k = -1070..1023 with another status", fn ? "ZHENG" : "DEFAULT", lo, hi,
+                   n_other);
+  }
+}
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   g_test_add_func("/pw85_dca_2d/circles", test_dca_2d_circles);
@@ -436,5 +544,6 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_dca/default/reference/contact", test_dca_default_contact);
   g_test_add_func("/pw85_dca/default/reference/near_contact", test_dca_default_near_contact);
   g_test_add_func("/pw85_dca_ex/theta_tol", test_dca_ex_theta_tol);
+  g_test_add_func("/pw85_dca/extreme_scale", test_dca_extreme_scale);
   return g_test_run();
 }

@@ -258,6 +258,66 @@ static void test_f_neg_reference(void) {
   g_free(F);
 }
 
+/* Exact power-of-two scalings over the whole double range (docs/stability.md,
+ * "Accepted input ranges"): r -> 2^kr r, Q -> 2^kq Q multiply f, g and g'
+ * by 2^(2 kr - kq). Reference: the unscaled call, scaled exactly in long
+ * double and rounded once, within 2 eps (the unscaled evaluation of Q scaled
+ * by an odd power of two differs in the roundings of its square roots);
+ * inputs exact at both scales. Values beyond the double range come out as
+ * +-Inf, subnormal or 0 (the rounded value). */
+static int f_scaled_ok(const double R[3], const double Q1[6], const double Q2[6], int kr, int kq,
+                       double *worst) {
+  double p0[15], p[15];
+  for (int i = 0; i < 3; i++) {
+    p0[i] = R[i];
+    p[i] = ldexp(R[i], kr);
+    if (ldexp(p[i], -kr) != R[i]) return 1;
+  }
+  for (int i = 0; i < 6; i++) {
+    p0[3 + i] = Q1[i], p0[9 + i] = Q2[i];
+    p[3 + i] = ldexp(Q1[i], kq), p[9 + i] = ldexp(Q2[i], kq);
+    if (ldexp(p[3 + i], -kq) != Q1[i] || ldexp(p[9 + i], -kq) != Q2[i]) return 1;
+  }
+  int const e = 2 * kr - kq;
+  double const lambda = 0.3;
+  double out0[3], out[3], got[4], ref[4];
+  pw85__residual(lambda, p0, p0 + 3, p0 + 9, out0);
+  pw85__residual(lambda, p, p + 3, p + 9, out);
+  got[0] = pw85_f_neg(lambda, p);
+  ref[0] = -pw85_f_neg(lambda, p0);
+  for (int i = 0; i < 3; i++) got[1 + i] = out[i], ref[1 + i] = out0[i];
+  got[0] = -got[0];
+  int ok = 1;
+  for (int i = 0; i < 4; i++) {
+    double const ex = (double)ldexpl(ref[i], e); /* rounded once */
+    double const err = ex == got[i] ? 0. : fabs(got[i] - ex) / fabs(ex);
+    *worst = fmax(*worst, isfinite(ex) && fabs(ex) >= DBL_MIN ? err : 0.);
+    /* below DBL_MIN: the same relative error plus one subnormal rounding */
+    int const good = !isfinite(ex) ? got[i] == ex
+                                   : fabs(got[i] - ex) <= 2 * DBL_EPSILON * fabs(ex) + 0x1p-1074;
+    if (!good) {
+      g_test_message("kr = %d kq = %d: output %d = %.17g, expected %.17g", kr, kq, i, got[i], ex);
+      ok = 0;
+    }
+  }
+  return ok;
+}
+
+static void test_f_neg_extreme_scale(void) {
+  double const R[3] = {1.25, -0.5, 0.75};
+  double const Q1[6] = {1, 0.125, -0.25, 0.5, 0.0625, 0.375};
+  double const Q2[6] = {0.25, -0.0625, 0, 1, 0.125, 0.5};
+  int bad = 0;
+  double worst = 0.;
+  for (int k = -1074; k <= 1023; k++) {
+    bad += !f_scaled_ok(R, Q1, Q2, k, 0, &worst);
+    bad += !f_scaled_ok(R, Q1, Q2, 0, k, &worst);
+    bad += !f_scaled_ok(R, Q1, Q2, k, 2 * k, &worst);
+  }
+  g_test_message("largest deviation %.3g eps; %d scalings wrong", worst / DBL_EPSILON, bad);
+  g_assert_cmpint(bad, ==, 0);
+}
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   g_test_add_func("/pw85_f_neg/random", test_f_neg_random);
@@ -265,5 +325,6 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_f_neg/reference/F", test_f_neg_reference);
   g_test_add_func("/pw85__residual/random", test_residual_random);
   g_test_add_func("/pw85__residual/bad_input", test_residual_bad_input);
+  g_test_add_func("/pw85_f_neg/extreme_scale", test_f_neg_extreme_scale);
   return g_test_run();
 }

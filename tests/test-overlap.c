@@ -230,6 +230,90 @@ static void test_random_clear(void) {
   g_rand_free(rng);
 }
 
+/* A far pair whose r12 is out of scale with its matrices: 2^515 (1, 1/2, 1/4)
+ * with entries <= 1 is separated (mu^2 ~ 2^1030), by (O19). */
+static void test_far_pair(void) {
+  double const q1[6] = {1, 0.1, -0.2, 0.5, 0.05, 0.3};
+  double const q2[6] = {0.2, -0.05, 0.01, 0.9, 0.1, 0.4};
+  for (int k = 30; k <= 1023; k++) {
+    double const r[3] = {ldexp(1., k), ldexp(0.5, k), ldexp(0.25, k)};
+    int const v = pw85_overlap(r, q1, q2);
+    if (v != 0) g_error("k = %d: pw85_overlap returns %d, expected 0", k, v);
+  }
+}
+
+/* Exact power-of-two scalings over the whole double range (docs/stability.md,
+ * "Accepted input ranges"): r -> 2^kr r, Q -> 2^kq Q scales mu^2 by
+ * 2^(2 kr - kq); the verdict must be mu^2 < 1 for mu^2 from the long double
+ * reference of the unscaled pair (scalings putting mu^2 within 1e-9 of 1
+ * skipped), for every scaling whose inputs are exact doubles. */
+static int overlap_scaled_ok(const double R[3], const double Q1[6], const double Q2[6],
+                             long double mu0, int kr, int kq) {
+  double r[3], q1[6], q2[6];
+  for (int i = 0; i < 3; i++) {
+    r[i] = ldexp(R[i], kr);
+    if (ldexp(r[i], -kr) != R[i]) return 1;
+  }
+  for (int i = 0; i < 6; i++) {
+    q1[i] = ldexp(Q1[i], kq);
+    q2[i] = ldexp(Q2[i], kq);
+    if (ldexp(q1[i], -kq) != Q1[i] || ldexp(q2[i], -kq) != Q2[i]) return 1;
+  }
+  long double const mu2 = ldexpl(mu0, 2 * kr - kq);
+  if (fabsl(mu2 - 1) <= 1e-9L) return 1;
+  int const v = pw85_overlap(r, q1, q2);
+  if (v != (mu2 < 1)) {
+    g_test_message("kr = %d kq = %d: pw85_overlap = %d, mu2 = %Lg", kr, kq, v, mu2);
+    return 0;
+  }
+  return 1;
+}
+
+static void test_extreme_scale(void) {
+  double const R[3] = {1.25, -0.5, 0.75};
+  double const Q1[6] = {1, 0.1, -0.2, 0.5, 0.05, 0.3};
+  double const Q2[6] = {0.2, -0.05, 0.01, 0.9, 0.1, 0.4};
+  /* few significant bits: exact down to the subnormal range */
+  double const S1[6] = {1, 0.125, -0.25, 0.5, 0.0625, 0.375};
+  double const S2[6] = {0.25, -0.0625, 0, 1, 0.125, 0.5};
+  struct { const double *q1, *q2; } const pairs[] = {{Q1, Q2}, {S1, S2}};
+  int bad = 0;
+  for (size_t p = 0; p < G_N_ELEMENTS(pairs); p++) {
+    long double lambda;
+    long double const mu0 = mu2_ld(R, pairs[p].q1, pairs[p].q2, &lambda);
+    for (int k = -1074; k <= 1023; k++) {
+      bad += !overlap_scaled_ok(R, pairs[p].q1, pairs[p].q2, mu0, k, 0);
+      bad += !overlap_scaled_ok(R, pairs[p].q1, pairs[p].q2, mu0, 0, k);
+      bad += !overlap_scaled_ok(R, pairs[p].q1, pairs[p].q2, mu0, k, 2 * k);
+    }
+  }
+  g_assert_cmpint(bad, ==, 0);
+  /* Magnitude ratio: Q2 -> 2^k Q2, a verdict or PW85_ERR_INACCURATE; the
+   * verdict range around k = 0 is reported (docs/stability.md). */
+  int lo = 0, hi = 0, n_inaccurate = 0;
+  for (int k = -1070; k <= 1023; k++) {
+    double q2[6];
+    for (int i = 0; i < 6; i++) q2[i] = ldexp(S2[i], k);
+    int const v = pw85_overlap(R, S1, q2);
+    g_assert_true(v == 0 || v == 1 || v == PW85_ERR_INACCURATE);
+    n_inaccurate += v == PW85_ERR_INACCURATE;
+  }
+  for (int k = 0; k >= -1070; k--) {
+    double q2[6];
+    for (int i = 0; i < 6; i++) q2[i] = ldexp(S2[i], k);
+    if (pw85_overlap(R, S1, q2) < 0) break;
+    lo = k;
+  }
+  for (int k = 0; k <= 1023; k++) {
+    double q2[6];
+    for (int i = 0; i < 6; i++) q2[i] = ldexp(S2[i], k);
+    if (pw85_overlap(R, S1, q2) < 0) break;
+    hi = k;
+  }
+  g_test_message("ratio Q2 = 2^k Q2: a verdict for every k in [%d, %d]; %d of k = -1070..1023 "
+                 "PW85_ERR_INACCURATE", lo, hi, n_inaccurate);
+}
+
 static void test_bad_input(void) {
   double q[6] = {1, 0, 0, 1, 0, 1}, r[3] = {1, 0, 0};
   double notspd[6] = {1, 2, 0, 1, 0, 1};
@@ -258,5 +342,7 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_overlap/tangent/sweep-scaled", test_tangent_sweep);
   g_test_add_func("/pw85_overlap/random/off-axis-near-contact", test_off_axis);
   g_test_add_func("/pw85_overlap/bad-input", test_bad_input);
+  g_test_add_func("/pw85_overlap/far_pair", test_far_pair);
+  g_test_add_func("/pw85_overlap/extreme_scale", test_extreme_scale);
   return g_test_run();
 }

@@ -588,6 +588,53 @@ static void test_magnitudes(gconstpointer data) {
   }
 }
 
+/* Magnitude ratio of the two matrices (docs/stability.md, "Accepted input
+ * ranges"): Q2 -> 2^k Q2 with r and Q1 fixed, k = -1070..1023 (exact
+ * scalings). Every status is one of PW85_OK, PW85_ERR_INACCURATE,
+ * PW85_ERR_NO_CONVERGENCE, PW85_ERR_RANGE, mu2 is not NaN, and for |k| <= 60
+ * (where the reference resolves lambda*) PW85_OK comes with mu2 within the
+ * documented accuracy of the __float128 reference. Reports the range of k
+ * around 0 in which the status is PW85_OK throughout. */
+static void test_matrix_ratio(gconstpointer data) {
+  Method const *m = data;
+  double const r[3] = {1.25, -0.5, 0.75};
+  double const q1[6] = {1, 0.125, -0.25, 0.5, 0.0625, 0.375};
+  double const q20[6] = {0.25, -0.0625, 0, 1, 0.125, 0.5};
+  int lo = 0, hi = 0, n_ok = 0, n_flagged = 0, n_nan = 0;
+  int lo_open = 1, hi_open = 1;
+  int status_at[2100];
+  for (int k = -1070; k <= 1023; ++k) {
+    double q2[6];
+    for (int j = 0; j < 6; ++j) q2[j] = ldexp(q20[j], k);
+    pw85_result res;
+    int const s = pw85_contact_function_method(r, q1, q2, m->id, &res);
+    status_at[k + 1070] = s;
+    g_assert_true(s == PW85_OK || s == PW85_ERR_INACCURATE || s == PW85_ERR_NO_CONVERGENCE ||
+                  s == PW85_ERR_RANGE);
+    /* NaN estimates with a failure status: counted (NEWTON, ZHENG; see
+     * docs/stability.md, "Accepted input ranges"). */
+    if (isnan(res.mu2)) {
+      g_assert_cmpint(s, !=, PW85_OK);
+      n_nan++;
+    }
+    if (s == PW85_OK) {
+      n_ok++;
+      if (abs(k) <= 60) {
+        double const ref = ref_mu2(r, q1, q2);
+        g_assert_cmpfloat(fabs(res.mu2 - ref), <=, m->accuracy * ref);
+      }
+    } else {
+      n_flagged++;
+    }
+  }
+  for (int k = 0; k >= -1070 && lo_open; --k)
+    if (status_at[k + 1070] == PW85_OK) lo = k; else lo_open = 0;
+  for (int k = 0; k <= 1023 && hi_open; ++k)
+    if (status_at[k + 1070] == PW85_OK) hi = k; else hi_open = 0;
+  g_test_message("%s: PW85_OK for every k in [%d, %d]; %d PW85_OK, %d other statuses (%d with "
+                 "mu2 NaN) over k = -1070..1023", m->name, lo, hi, n_ok, n_flagged, n_nan);
+}
+
 /* BRENT is pw85_contact_function(): same mu2 and lambda bit for bit. */
 static void test_brent_is_legacy(void) {
   GRand *rng = g_rand_new_with_seed(7006);
@@ -674,6 +721,7 @@ int main(int argc, char **argv) {
       {"coincident", test_coincident},   {"needle_disc", test_needle_disc},
       {"parallel_needles", test_parallel_needles}, {"spheres", test_spheres},
       {"scales", test_scales},           {"magnitudes", test_magnitudes},
+      {"matrix_ratio", test_matrix_ratio},
   };
   for (size_t i = 0; i < N_METHODS; ++i)
     for (size_t j = 0; j < sizeof cases / sizeof cases[0]; ++j) {

@@ -1,11 +1,13 @@
 // extern "C" layer of the distance-of-closest-approach functions
 // (include/pw85.h; core in src/core/dca/ and src/core/contact/contact_2d.cpp):
 // validate, normalise the direction, call the core, map to a status code.
+#include <cfloat>
 #include <cmath>
 
 #include "pw85.h"
 #include "contact/contact.hpp"
 #include "dca/dca.hpp"
+#include "common/magnitude.hpp"
 #include "common/status.hpp"
 #include "common/sym2.hpp"
 #include "common/sym3.hpp"
@@ -37,14 +39,23 @@ bool normalise(double const *u, double *out) noexcept {
   return true;
 }
 
+// Positive definiteness of 2^-e q, e the even exponent at or above that of
+// max |q_ij| (exact): det = q00 q11 - q01^2 neither underflows nor
+// overflows (1e-300 I is accepted).
+bool spd_scaled_2d(double const *q) noexcept {
+  int e = pw85::max_exponent(q, 3);
+  e += e & 1;
+  pw85::Sym2 s;
+  for (int i = 0; i < 3; ++i) s[i] = std::ldexp(q[i], -e);
+  return pw85::is_positive_definite(s);
+}
+
 // A pair of ellipses: r finite, q1 and q2 finite and positive definite.
 pw85::Status validate_pair_2d(double const *r, double const *q1, double const *q2) noexcept {
   if (r == nullptr || q1 == nullptr || q2 == nullptr) return pw85::kInvalidArgument;
   if (!pw85::all_finite(r, 2) || !pw85::all_finite(q1, 3) || !pw85::all_finite(q2, 3))
     return pw85::kInvalidArgument;
-  if (!pw85::is_positive_definite(pw85::load_sym2(q1)) ||
-      !pw85::is_positive_definite(pw85::load_sym2(q2)))
-    return pw85::kNotSpd;
+  if (!spd_scaled_2d(q1) || !spd_scaled_2d(q2)) return pw85::kNotSpd;
   return pw85::kOk;
 }
 
@@ -94,8 +105,13 @@ int pw85_contact_function_2d(double const r12[2], double const q1[3], double con
     return status;
   }
   int iterations;
-  return pw85::contact_function_2d(pw85::load_vec2(r12), pw85::load_sym2(q1),
-                                   pw85::load_sym2(q2), out[0], out[1], iterations);
+  int const s = pw85::contact_function_2d(pw85::load_vec2(r12), pw85::load_sym2(q1),
+                                          pw85::load_sym2(q2), out[0], out[1], iterations);
+  // mu^2 out of the range of double (written rounded: +Inf, subnormal or 0;
+  // r12 = 0 gives mu^2 = 0 exactly).
+  bool const r_zero = r12[0] == 0.0 && r12[1] == 0.0;
+  if (s == PW85_OK && !r_zero && !(out[0] >= DBL_MIN && out[0] <= DBL_MAX)) return PW85_ERR_RANGE;
+  return s;
 }
 
 int pw85_dca(double const u[3], double const q1[6], double const q2[6], int method,

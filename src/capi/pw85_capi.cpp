@@ -1,11 +1,13 @@
 // The extern "C" layer of libpw85: validate every argument, call the C++
 // core, turn the outcome into a status code. No logic of its own lives here.
 // The core is compiled without exceptions, so none can cross this boundary.
+#include <cfloat>
 #include <cmath>
 
 #include "pw85.h"
 #include "contact/contact.hpp"
 #include "common/ellipsoid.hpp"
+#include "common/magnitude.hpp"
 #include "eval/f_cholesky.hpp"
 #include "common/status.hpp"
 #include "common/sym3.hpp"
@@ -18,9 +20,36 @@ static_assert(pw85::kNoConvergence == PW85_ERR_NO_CONVERGENCE, "");
 static_assert(pw85::kNotOrthonormal == PW85_ERR_NOT_ORTHONORMAL, "");
 static_assert(pw85::kUnknownMethod == PW85_ERR_UNKNOWN_METHOD, "");
 static_assert(pw85::kInaccurate == PW85_ERR_INACCURATE, "");
+static_assert(pw85::kRange == PW85_ERR_RANGE, "");
 static_assert(pw85::kDim == PW85_DIM && pw85::kSym == PW85_SYM, "");
 
 using pw85::capi::fill_nan;
+
+namespace {
+
+// Exact power-of-two scaling of a pair for the pw85 1.0 evaluations of f:
+// when max |r_i| or max |Q_ij| lies outside (kSafeLo, kSafeHi), r' = 2^-er r
+// and Q' = 2^-eq Q (common even eq), so that f, g and g' (all of the units of
+// r^T Q^{-1} r) are those of the scaled pair times 2^(2 er - eq); returns
+// that exponent (0: no scaling).
+int scale_pair(pw85::Vec3 &r, pw85::Sym3 &q1, pw85::Sym3 &q2) noexcept {
+  double const rm = pw85::max_abs(r.x, pw85::kDim), m1 = pw85::max_abs(q1.a, pw85::kSym),
+               m2 = pw85::max_abs(q2.a, pw85::kSym), qm = m1 > m2 ? m1 : m2;
+  if (rm > pw85::kSafeLo && rm < pw85::kSafeHi && qm > pw85::kSafeLo && qm < pw85::kSafeHi)
+    return 0;
+  int er, eq;
+  std::frexp(rm, &er);
+  std::frexp(qm, &eq);
+  eq += eq & 1;  // even: the square roots of the Cholesky factor scale exactly
+  for (int i = 0; i < pw85::kDim; ++i) r[i] = std::ldexp(r[i], -er);
+  for (int i = 0; i < pw85::kSym; ++i) {
+    q1[i] = std::ldexp(q1[i], -eq);
+    q2[i] = std::ldexp(q2[i], -eq);
+  }
+  return 2 * er - eq;
+}
+
+}  // namespace
 
 extern "C" {
 
@@ -42,6 +71,8 @@ const char *pw85_strerror(int status) {
       return "unknown method";
     case PW85_ERR_INACCURATE:
       return "result less accurate than the method documents";
+    case PW85_ERR_RANGE:
+      return "result out of the range of double";
     default:
       return "unknown status";
   }
@@ -73,6 +104,12 @@ void pw85_spheroid(double a, double c, double const n[PW85_DIM], double q[PW85_S
     return;
   }
   pw85::Sym3 const s = pw85::spheroid(a, c, pw85::load_vec3(n));
+  // An entry beyond DBL_MAX, or a diagonal entry below the smallest
+  // subnormal: Q is not representable (NaN, as for a bad argument).
+  if (!pw85::all_finite(s.a, PW85_SYM) || !(s[0] > 0.0 && s[3] > 0.0 && s[5] > 0.0)) {
+    fill_nan(q, PW85_SYM);
+    return;
+  }
   for (int i = 0; i < PW85_SYM; ++i) q[i] = s[i];
 }
 
@@ -99,10 +136,11 @@ double pw85_f_neg(double lambda, double const *params) {
       !pw85::all_finite(params, PW85_DIM + 2 * PW85_SYM))
     return std::nan("");
   double f;
-  if (!pw85::f_cholesky(lambda, pw85::load_vec3(params), pw85::load_sym3(params + 3),
-                        pw85::load_sym3(params + 9), f))
-    return std::nan("");
-  return -f;
+  pw85::Vec3 r = pw85::load_vec3(params);
+  pw85::Sym3 q1 = pw85::load_sym3(params + 3), q2 = pw85::load_sym3(params + 9);
+  int const e = scale_pair(r, q1, q2);
+  if (!pw85::f_cholesky(lambda, r, q1, q2, f)) return std::nan("");
+  return -std::ldexp(f, e);  // rounded once beyond the double range
 }
 
 void pw85__residual(double lambda, double const r12[PW85_DIM], double const q1[PW85_SYM],
@@ -111,15 +149,20 @@ void pw85__residual(double lambda, double const r12[PW85_DIM], double const q1[P
   pw85::Residual res;
   if (r12 == nullptr || q1 == nullptr || q2 == nullptr || !std::isfinite(lambda) ||
       !pw85::all_finite(r12, PW85_DIM) || !pw85::all_finite(q1, PW85_SYM) ||
-      !pw85::all_finite(q2, PW85_SYM) ||
-      !pw85::residual_cholesky(lambda, pw85::load_vec3(r12), pw85::load_sym3(q1),
-                               pw85::load_sym3(q2), res)) {
+      !pw85::all_finite(q2, PW85_SYM)) {
     fill_nan(out, 3);
     return;
   }
-  out[0] = res.f;
-  out[1] = res.g;
-  out[2] = res.dg;
+  pw85::Vec3 r = pw85::load_vec3(r12);
+  pw85::Sym3 a = pw85::load_sym3(q1), b = pw85::load_sym3(q2);
+  int const e = scale_pair(r, a, b);
+  if (!pw85::residual_cholesky(lambda, r, a, b, res)) {
+    fill_nan(out, 3);
+    return;
+  }
+  out[0] = std::ldexp(res.f, e);
+  out[1] = std::ldexp(res.g, e);
+  out[2] = std::ldexp(res.dg, e);
 }
 
 int pw85_contact_function(double const r12[PW85_DIM], double const q1[PW85_SYM],
@@ -135,6 +178,11 @@ int pw85_contact_function(double const r12[PW85_DIM], double const q1[PW85_SYM],
                                     pw85::load_sym3(q2), res);
   out[0] = res.mu2;
   out[1] = res.lambda;
+  // mu^2 out of the range of double (written rounded: +Inf, subnormal or 0;
+  // r12 = 0 gives mu^2 = 0 exactly).
+  bool const r_zero = r12[0] == 0.0 && r12[1] == 0.0 && r12[2] == 0.0;
+  if (s == PW85_OK && !r_zero && !(res.mu2 >= DBL_MIN && res.mu2 <= DBL_MAX))
+    return PW85_ERR_RANGE;
   return s;
 }
 

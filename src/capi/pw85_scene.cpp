@@ -176,7 +176,8 @@ int pw85_contact(double const r12[PW85_DIM], double const q1[PW85_SYM],
   pw85::ContactGeometry g;
   int const s = pw85::contact_geometry(pw85::load_vec3(r12), pw85::load_sym3(q1),
                                        pw85::load_sym3(q2), g);
-  if (s != PW85_OK && s != PW85_ERR_NO_CONVERGENCE && s != PW85_ERR_INACCURATE) {
+  if (s != PW85_OK && s != PW85_ERR_NO_CONVERGENCE && s != PW85_ERR_INACCURATE &&
+      s != PW85_ERR_RANGE) {
     fill_nan_contact(c);
     return s;
   }

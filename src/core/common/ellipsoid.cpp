@@ -2,18 +2,34 @@
 
 #include <cmath>
 
+#include "common/fp.hpp"
+#include "common/magnitude.hpp"
+
 namespace pw85 {
 
-Sym3 spheroid(double a, double c, Vec3 const &n) noexcept {
-  double const a2 = a * a;
-  double const c2_minus_a2 = c * c - a2;
+Sym3 spheroid(double a, double c, Vec3 const &n_in) noexcept {
+  // Q = a^2 (I - m m^T) + c^2 m m^T with m = n / |n| (section 3.1, eq. (2)
+  // for the semi-axes a, a, c), written with w_i = n_i^2 / |n|^2 and the
+  // diagonal of I - m m^T as (n_j^2 + n_k^2) / |n|^2: every entry is a sum
+  // of terms of one sign except the off-diagonal (c^2 - a^2) m_i m_j, so
+  // each entry is within a few roundings of its magnitude terms
+  // a^2 |P_ij| + c^2 |N_ij| at any aspect c / a.
+  // n scaled by 2^-en (exact) so that its squares neither overflow nor
+  // underflow.
+  int const en = max_exponent(n_in.x, kDim);
+  Vec3 n;
+  for (int i = 0; i < kDim; ++i) n[i] = std::ldexp(n_in[i], -en);
+  double const a2 = a * a, c2 = c * c;
+  double const s0 = n[0] * n[0], s1 = n[1] * n[1], s2 = n[2] * n[2];
+  double const inv = 1.0 / (s0 + s1 + s2);
+  double const d = (c - a) * (c + a) * inv;  // (c^2 - a^2) / |n|^2
   Sym3 q;
-  q[0] = n[0] * n[0] * c2_minus_a2 + a2;
-  q[3] = n[1] * n[1] * c2_minus_a2 + a2;
-  q[5] = n[2] * n[2] * c2_minus_a2 + a2;
-  q[1] = n[0] * n[1] * c2_minus_a2;
-  q[2] = n[0] * n[2] * c2_minus_a2;
-  q[4] = n[1] * n[2] * c2_minus_a2;
+  q[0] = (a2 * (s1 + s2) + c2 * s0) * inv;
+  q[3] = (a2 * (s0 + s2) + c2 * s1) * inv;
+  q[5] = (a2 * (s0 + s1) + c2 * s2) * inv;
+  q[1] = d * (n[0] * n[1]);
+  q[2] = d * (n[0] * n[2]);
+  q[4] = d * (n[1] * n[2]);
   return q;
 }
 
@@ -38,8 +54,13 @@ Status ellipsoid(Vec3 const &radii, double const axes[9], double tol, Sym3 &q) n
       q[idx] = qij;
     }
   }
-  // Radii so large or small that a_k^2 overflows or underflows.
-  if (!all_finite(q.a, kSym)) return kInvalidArgument;
+  // Radii so large or small that a_k^2 leaves [DBL_MIN, DBL_MAX]: Q is not
+  // representable to the precision of double (kRange, status.hpp).
+  for (int k = 0; k < kDim; ++k) {
+    double const a2 = radii[k] * radii[k];
+    if (!(a2 >= kMinNormal && a2 <= kMaxDouble)) return kRange;
+  }
+  if (!all_finite(q.a, kSym)) return kRange;
   if (!is_positive_definite(q)) return kNotSpd;
   return kOk;
 }

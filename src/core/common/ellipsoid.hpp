@@ -7,8 +7,9 @@
 
 namespace pw85 {
 
-// Spheroid: Q = a^2 I + (c^2 - a^2) n n^T. Evaluated in pw85 1.0's order, so
-// the doubles produced are the same as pw85 1.0's.
+// Spheroid of semi-axes a, a, c and axis n / |n| (n != 0):
+// Q = a^2 (I - m m^T) + c^2 m m^T, m = n / |n|, without cancellation between
+// a^2 and c^2. Entries beyond the double range come out as +-Inf or 0.
 Sym3 spheroid(double a, double c, Vec3 const &n) noexcept;
 
 // General ellipsoid; axes holds the three unit axes row by row. Checks

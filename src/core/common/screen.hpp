@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "common/fp.hpp"
+#include "common/magnitude.hpp"
 
 namespace pw85 {
 
@@ -26,6 +27,17 @@ inline bool ldl_positive(double const *a) noexcept {
   double const e = a[4] - l2 * a[1];
   double const d2 = a[5] - l2 * a[2] - (e / d1) * e;  // no overflow of e * e
   return d2 > 0.0 && d2 <= kMaxDouble;   // false for NaN, +Inf
+}
+
+// ldl_positive of 2^-e a, e the exponent of max |a_ij| (exact scaling):
+// the same decision as ldl_positive wherever that neither underflows nor
+// overflows, and the right one for a matrix of subnormal or huge entries
+// (whose pivots 1/a_00, a_ij a_ik / a_ii leave the double range).
+inline bool ldl_positive_scaled(double const *a) noexcept {
+  int const e = max_exponent(a, 6);
+  double b[6];
+  for (int i = 0; i < 6; ++i) b[i] = std::ldexp(a[i], -e);
+  return ldl_positive(b);
 }
 
 // Two-lane helpers (GCC/Clang vector extension, one SSE2 register).

@@ -12,6 +12,7 @@ enum Status : int {
   kNotOrthonormal = -4,
   kUnknownMethod = -5,
   kInaccurate = -6,
+  kRange = -7,
 };
 
 }  // namespace pw85

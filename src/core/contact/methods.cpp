@@ -124,10 +124,13 @@ Status contact_method(int method, Vec3 const &r_in, Sym3 const &q1_in, Sym3 cons
       q2[i] = std::ldexp(q2[i], -eq);
     }
   }
-  Status const s = contact_method_in_range(method, r, q1, q2, res);
+  Status s = contact_method_in_range(method, r, q1, q2, res);
   if (scale) {
     res.mu2 = std::ldexp(res.mu2, 2 * er - eq);
     res.mu2_error = std::ldexp(res.mu2_error, 2 * er - eq);
+    // mu2 above DBL_MAX (written +Inf) or below DBL_MIN (written rounded,
+    // subnormal or 0): kRange (status.hpp).
+    if (s == kOk && !(res.mu2 >= kMinNormal && res.mu2 <= kMaxDouble)) s = kRange;
   }
   return s;
 }
@@ -148,7 +151,7 @@ PW85_ALWAYS_INLINE Status entry_body(double const *r12, double const *q1, double
   }
   if (!all_finite(r12, kDim) || !all_finite(q1, kSym) || !all_finite(q2, kSym))
     return kInvalidArgument;
-  if (!ldl_positive(q1) || !ldl_positive(q2)) return kNotSpd;
+  if (!ldl_positive_scaled(q1) || !ldl_positive_scaled(q2)) return kNotSpd;
   return contact_method(method, load_vec3(r12), load_sym3(q1), load_sym3(q2), res);
 }
 

@@ -1,5 +1,6 @@
 // Distance of closest approach through a contact-function method
 // (dca.hpp): d(u) = |u| / sqrt(F(u)).
+#include <algorithm>
 #include <cmath>
 
 #include "common/magnitude.hpp"
@@ -12,14 +13,24 @@ Status dca_by_contact_function(Vec3 const &u, Sym3 const &q1, Sym3 const &q2, in
                                double &d) noexcept {
   // max |u_i| in [0.5, 1): |u| in [0.5, sqrt(3)), no overflow or underflow
   // of u^T u, and F(u) = |u|^2 / d^2 as representable as 1 / d^2.
+  // Q' = 2^-2m Q with max |Q'_ij| in [1/4, 1) (exact) keeps F(v) = |v|^2 / d'^2
+  // near 1 / max |Q_ij| in range; d = 2^m d' (d scales as the square root
+  // of Q).
   int const e = max_exponent(u.x, kDim);
   Vec3 v;
   for (int i = 0; i < kDim; ++i) v[i] = std::ldexp(u[i], -e);
+  int eq = std::max(max_exponent(q1.a, kSym), max_exponent(q2.a, kSym));
+  eq += eq & 1;
+  Sym3 p1, p2;
+  for (int i = 0; i < kSym; ++i) {
+    p1[i] = std::ldexp(q1[i], -eq);
+    p2[i] = std::ldexp(q2[i], -eq);
+  }
   MethodResult res;
-  Status const s = contact_method(method, v, q1, q2, res);
+  Status const s = contact_method(method, v, p1, p2, res);
   if (s == kUnknownMethod) return s;
   double const norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  d = norm / std::sqrt(res.mu2);
+  d = std::ldexp(norm / std::sqrt(res.mu2), eq / 2);
   return s;
 }
 

@@ -22,6 +22,7 @@
 #include <cmath>
 
 #include "common/fp.hpp"
+#include "common/magnitude.hpp"
 #include "contact/contact.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "eval/f_dd.hpp"
@@ -157,13 +158,11 @@ bool fast_point(double &lambda_io, Vec3 const &r, Sym3 const &q1, Sym3 const &q2
   lambda_io = lambda + dl;
   return true;
 }
-}  // namespace
 
-Status contact_geometry(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                        ContactGeometry &g) noexcept {
-  // NaN until computed: an early kNoConvergence leaves no garbage.
-  double const nan = std::nan("");
-  g = ContactGeometry{nan, nan, {nan, nan, nan}, {nan, nan, nan}, nan, nan, nan};
+// mu2, lambda, x0 and n for r and Q1, Q2 in the range of contact_geometry's
+// scaling (below); g's other fields untouched.
+Status contact_point(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                     ContactGeometry &g) noexcept {
   // PW85_METHOD_DEFAULT (src/core/default.cpp, docs/methods.md).
   MethodResult res;
   Status status = contact_method(kMethodDefault, r, q1, q2, res);
@@ -221,18 +220,73 @@ Status contact_geometry(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
       df = df1;
     }
   }
-  double const nr = std::sqrt(dot(r, r));
   g.mu2 = mu2;
   g.lambda = lambda;
   for (int i = 0; i < kDim; ++i) {
     g.x0[i] = x0[i];
     g.n[i] = n[i];
   }
-  double const mu = std::sqrt(mu2);
-  g.dca = nr / mu;
-  // dca - |r| without cancellation near tangency: |r| (1 - mu^2) / (mu (1 + mu)).
-  g.depth = nr * ((1.0 - mu2) / (mu * (1.0 + mu)));
-  g.depth_n = g.depth * (dot(r, n) / nr);
+  return status;
+}
+
+}  // namespace
+
+Status contact_geometry(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in,
+                        ContactGeometry &g) noexcept {
+  // NaN until computed: an early kNoConvergence leaves no garbage.
+  double const nan = std::nan("");
+  g = ContactGeometry{nan, nan, {nan, nan, nan}, {nan, nan, nan}, nan, nan, nan};
+  // Exact rescaling by powers of two (G12): r' = 2^-er r, Q' = 2^-eq Q with
+  // eq even leave lambda and n unchanged and give mu2 = 2^(2 er - eq) mu2',
+  // x0 = 2^er x0' (G1), dca = 2^(eq/2) dca' (G4). Done when r or the
+  // matrices lie outside (kSafeLo, kSafeHi), where the intermediate s^T Q s
+  // ~ |r|^2 / |Q| could overflow or underflow.
+  double const rmax = max_abs(r_in.x, kDim), qm1 = max_abs(q1_in.a, kSym),
+               qm2 = max_abs(q2_in.a, kSym), qmax = qm1 > qm2 ? qm1 : qm2;
+  bool const scale = !(rmax > kSafeLo && rmax < kSafeHi && qmax > kSafeLo && qmax < kSafeHi);
+  int er = 0, eq = 0;
+  Vec3 r = r_in;
+  Sym3 q1 = q1_in, q2 = q2_in;
+  if (scale) {
+    std::frexp(rmax, &er);
+    std::frexp(qmax, &eq);
+    eq += eq & 1;  // even (also for negative eq: two's complement)
+    for (int i = 0; i < kDim; ++i) r[i] = std::ldexp(r[i], -er);
+    for (int i = 0; i < kSym; ++i) {
+      q1[i] = std::ldexp(q1[i], -eq);
+      q2[i] = std::ldexp(q2[i], -eq);
+    }
+  }
+  Status status = contact_point(r, q1, q2, g);
+  if (!(g.lambda >= 0.0 && g.lambda <= 1.0)) return status;
+  // In the scaled frame: |r'|, mu' and dca' = |r'| / mu' (G4).
+  double const nr = std::sqrt(dot(r, r));
+  double const mu_s = std::sqrt(g.mu2);
+  double const dca_s = nr / mu_s;
+  // r'.n / |r'|: the cosine of (G6), scale-free.
+  double const cosine = (r[0] * g.n[0] + r[1] * g.n[1] + r[2] * g.n[2]) / nr;
+  int const emu = er - eq / 2;  // mu = 2^emu mu'
+  double const mu2 = scale ? std::ldexp(g.mu2, 2 * emu) : g.mu2;
+  double const mu = scale ? std::ldexp(mu_s, emu) : mu_s;
+  g.mu2 = mu2;
+  if (scale)
+    for (int i = 0; i < kDim; ++i) g.x0[i] = std::ldexp(g.x0[i], er);
+  g.dca = scale ? std::ldexp(dca_s, eq / 2) : dca_s;
+  // depth = dca - |r| = dca (1 - mu) (G5): as dca (1 - mu^2) / (1 + mu)
+  // without cancellation near tangency; for mu >= 2, where mu^2 may
+  // overflow, as dca - |r| (no cancellation there).
+  if (mu < 2.0)
+    g.depth = g.dca * ((1.0 - mu2) / (1.0 + mu));
+  else
+    g.depth = g.dca - (scale ? std::ldexp(nr, er) : nr);
+  g.depth_n = g.depth * cosine;
+  // A result out of the range of double (status.hpp kRange): mu2, dca or
+  // the largest |x0_i| above DBL_MAX or below DBL_MIN, or |depth| above
+  // DBL_MAX.
+  double const xmax = max_abs(Vec3{{g.x0[0], g.x0[1], g.x0[2]}});
+  auto out = [](double v) { return !(v >= kMinNormal && v <= kMaxDouble); };
+  if (status == kOk && (out(mu2) || out(g.dca) || out(xmax) || !(std::fabs(g.depth) <= kMaxDouble)))
+    status = kRange;
   return status;
 }
 

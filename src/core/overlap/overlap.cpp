@@ -593,6 +593,21 @@ Status overlap(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in, int &verd
       }
     }
   }
+  // Separation by size (eq. (O19)): each ellipsoid lies in the ball of
+  // radius sqrt(lambda_max(Q_k)) <= sqrt(3 max |Q_ij|) about its centre
+  // (Gershgorin), so |r| > 2 sqrt(3 qmax) separates them (mu^2 > 1). With
+  // r_max = max |r_i| >= 2^(er - 1) and qmax < 2^eq, 2 er >= eq + 6 gives
+  // r_max^2 >= 16 qmax: an integer test, exact at any magnitude.
+  {
+    int er, eq;
+    std::frexp(max_abs(r_in.x, kDim), &er);
+    std::frexp(std::fmax(max_abs(q1_in.a, kSym), max_abs(q2_in.a, kSym)), &eq);
+    if (2 * er >= eq + 6) {
+      st = kStageFilter;
+      verdict = 0;
+      return kOk;
+    }
+  }
   // --- Exact stage. ---
   st = kStageExact;
   return overlap_exact(r_in, q1_in, q2_in, verdict);
