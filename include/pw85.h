@@ -316,10 +316,16 @@ typedef struct pw85_result {
  *   PW85_ERR_INACCURATE        result written, but mu2_error exceeds the
  *                              documented relative accuracy times mu2;
  *   PW85_ERR_NO_CONVERGENCE    the iteration stopped early; best estimate
- *                              written (finite);
+ *                              written (finite; where the method has none,
+ *                              the largest f met by bisection on f', with
+ *                              mu2_error +inf when no bound is known, and
+ *                              mu2 = 0, lambda = 0.5 when f cannot be
+ *                              evaluated at all);
  *   PW85_ERR_INVALID_ARGUMENT  NULL pointer, NaN or infinite value;
  *   PW85_ERR_NOT_SPD           q1 or q2 not positive definite;
  *   PW85_ERR_UNKNOWN_METHOD    method is not a PW85_METHOD_* value.
+ * With the first three, lambda is in [0, 1], mu2 >= 0 (+inf only where
+ * mu2 exceeds the range of double) and mu2_error is never NaN.
  * On the last three errors mu2, lambda and mu2_error are NaN and iterations
  * is 0 (nothing is written when res is NULL). Never allocates. With
  * PW85_METHOD_DEFAULT the last bits may depend on the CPU (top of this

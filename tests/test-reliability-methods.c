@@ -3,8 +3,8 @@
  * ratios, near-singular matrices): the answer is the same bits whatever
  * was computed before, its status is one of the documented list, and a
  * status that writes a value (PW85_OK, PW85_ERR_INACCURATE,
- * PW85_ERR_NO_CONVERGENCE) writes a finite mu2 >= 0 and a lambda in
- * [0, 1] (include/pw85.h, docs/stability.md). */
+ * PW85_ERR_NO_CONVERGENCE) writes a finite mu2 >= 0, a lambda in [0, 1]
+ * and a mu2_error that is not NaN (include/pw85.h, docs/stability.md). */
 #include <float.h>
 #include <math.h>
 #include <string.h>
@@ -49,6 +49,64 @@ static const Pair others[] = {
 static G_GNUC_NO_INLINE void scribble_stack(unsigned char byte) {
   volatile unsigned char buf[1 << 16];
   for (size_t i = 0; i < sizeof buf; ++i) buf[i] = byte;
+}
+
+/* Pairs on which a method ended without an estimate (NaN mu2 or lambda),
+ * with NaN mu2_error, or with lambda outside [0, 1]: q1 = q2 =
+ * diag(1e16, 1e16, 1e-16) (ZHENG; mu2 = r^T Q^{-1} r / 4 = 0.25 exactly at
+ * lambda = 1/2); Q1 = diag(DBL_MAX, 4.9e-324, 1), Q2 = I (every method but
+ * RATIONAL); two pairs whose maximiser is within an ulp of 1 (DEFAULT
+ * returned lambda = 1 + 2^-52 with PW85_OK). */
+static const Pair extreme[] = {
+    {{1e8, 0, 0}, {1e16, 0, 0, 1e16, 0, 1e-16}, {1e16, 0, 0, 1e16, 0, 1e-16}},
+    {{1, 1, 1}, {DBL_MAX, 0, 0, 4.9e-324, 0, 1}, {1, 0, 0, 1, 0, 1}},
+    {{0x1.0e4157d22a023p+5, -0x1.0079f896a2819p+4, -0x1.185d6796104e7p+5},
+     {0x1.8b8485a217c33p-3, -0x1.d00b90ff1a576p-3, -0x1.8abfc52bf215ep-3,
+      0x1.65b2612faaf81p-1, 0x1.36dd9281085adp-2, 0x1.a9bbf893c6308p-2},
+     {0x1.72ca90bd83cbp-111, 0x1.5e09dc88be3ap-116, -0x1.2c92b4d87eb12p-113,
+      0x1.536f2031fe434p-109, -0x1.e70d4b69131e7p-110, 0x1.638ada4a288b2p-110}},
+    {{-0x1.208c4ee7eb5fcp-4, 0x1.4188b7d915c8cp-4, 0x1.777954ae21461p-5},
+     {0x1.e15e27642af0dp-6, -0x1.ea642823708dcp-5, 0x1.9506c12cd9ab8p-8,
+      0x1.4079330acb303p-1, 0x1.9a10c60fc05aap-2, 0x1.22b8edb299417p-1},
+     {0x1.0e73a404e28f1p-130, 0x1.f1a0eef4017d2p-132, 0x1.c2552e4b51edbp-130,
+      0x1.4735eb1ce9f86p-128, -0x1.843a357b30d19p-130, 0x1.024b212bd2f7dp-128}},
+};
+
+/* What a status that writes an estimate promises (include/pw85.h). */
+static void check_estimate(int status, const pw85_result *res) {
+  g_assert_true(status == PW85_OK || status == PW85_ERR_INACCURATE ||
+                status == PW85_ERR_NO_CONVERGENCE);
+  g_assert_true(isfinite(res->mu2) && res->mu2 >= 0.0);
+  g_assert_true(res->lambda >= 0.0 && res->lambda <= 1.0);
+  g_assert_false(isnan(res->mu2_error));
+}
+
+/* Every pair of `failing` and `extreme`: the promise above; on the first
+ * pair of `extreme`, mu2 within mu2_error of 0.25. */
+static void test_estimate(gconstpointer data) {
+  int const method = GPOINTER_TO_INT(data);
+  for (size_t k = 0; k < G_N_ELEMENTS(failing) + G_N_ELEMENTS(extreme); ++k) {
+    Pair const *p = k < G_N_ELEMENTS(failing) ? &failing[k] : &extreme[k - G_N_ELEMENTS(failing)];
+    pw85_result res;
+    int const s = pw85_contact_function_method(p->r, p->q1, p->q2, method, &res);
+    check_estimate(s, &res);
+  }
+  pw85_result res;
+  pw85_contact_function_method(extreme[0].r, extreme[0].q1, extreme[0].q2, method, &res);
+  g_assert_cmpfloat(fabs(res.mu2 - 0.25), <=, res.mu2_error);
+}
+
+/* The two pairs of `extreme` whose maximiser is within an ulp of 1: lambda
+ * in [0, 1], PW85_OK for DEFAULT. */
+static void test_lambda_near_1(gconstpointer data) {
+  int const method = GPOINTER_TO_INT(data);
+  for (size_t k = 2; k < 4; ++k) {
+    pw85_result res;
+    int const s = pw85_contact_function_method(extreme[k].r, extreme[k].q1, extreme[k].q2,
+                                               method, &res);
+    g_assert_true(res.lambda >= 0.0 && res.lambda <= 1.0);
+    if (method == PW85_METHOD_DEFAULT) g_assert_cmpint(s, ==, PW85_OK);
+  }
 }
 
 static void assert_same_result(const pw85_result *a, int sa, const pw85_result *b, int sb) {
@@ -115,6 +173,15 @@ int main(int argc, char **argv) {
     g_snprintf(path, sizeof path, "/pw85_contact_function_method/%s/failing_evaluation/repeatable",
                names[m]);
     g_test_add_data_func(path, GINT_TO_POINTER(m), test_repeatable);
+  }
+  for (int m = 0; m <= PW85_METHOD_ZHENG; ++m) {
+    char path[128];
+    g_snprintf(path, sizeof path, "/pw85_contact_function_method/%s/failing_evaluation/estimate",
+               names[m]);
+    g_test_add_data_func(path, GINT_TO_POINTER(m), test_estimate);
+    g_snprintf(path, sizeof path, "/pw85_contact_function_method/%s/maximiser_near_1/lambda",
+               names[m]);
+    g_test_add_data_func(path, GINT_TO_POINTER(m), test_lambda_near_1);
   }
   g_test_add_func("/pw85_contact/failing_evaluation/repeatable", test_contact_repeatable);
   return g_test_run();
