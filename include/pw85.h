@@ -180,13 +180,18 @@ PW85_API void pw85__residual(double lambda, double const r12[PW85_DIM],
  *     out[0] = mu^2,  out[1] = lambda (the maximiser of f).
  * r12 = c2 - c1 joins the centres; q1, q2 are the quadratic forms.
  * r12 = 0 gives mu^2 = 0 and lambda = 0.5 with PW85_OK.
- * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity),
- * PW85_ERR_NOT_SPD (q1 or q2 not positive definite) or
+ * Returns PW85_OK (mu^2 within 1e-10 relative, according to the error
+ * estimate of PW85_METHOD_BRENT, docs/methods.md eq. (M10)),
+ * PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity),
+ * PW85_ERR_NOT_SPD (q1 or q2 not positive definite),
  * PW85_ERR_NO_CONVERGENCE (Brent did not reach PW85_LAMBDA_ATOL in
  * PW85_MAX_ITER iterations and the refined residual does not show
  * convergence; the estimate is still written, mu^2 NaN if f could not be
- * evaluated). On the first two errors out is filled with NaN (when out is
- * not NULL). */
+ * evaluated) or PW85_ERR_INACCURATE (converged, but that estimate exceeds
+ * 1e-10 mu^2: ill-conditioned Q(lambda); pw85 1.0 returned success). The
+ * status is that of pw85_contact_function_method() with PW85_METHOD_BRENT,
+ * and out holds pw85 1.0's values whatever the status. On the first two
+ * errors out is filled with NaN (when out is not NULL). */
 PW85_API int pw85_contact_function(double const r12[PW85_DIM],
                                    double const q1[PW85_SYM],
                                    double const q2[PW85_SYM], double out[2]);

@@ -131,11 +131,12 @@ int pw85_contact_function(double const r12[PW85_DIM], double const q1[PW85_SYM],
     return status;
   }
   pw85::ContactResult res;
-  int const s = pw85::contact_brent(pw85::load_vec3(r12), pw85::load_sym3(q1),
-                                    pw85::load_sym3(q2), res);
+  pw85::Vec3 const r = pw85::load_vec3(r12);
+  pw85::Sym3 const a = pw85::load_sym3(q1), b = pw85::load_sym3(q2);
+  pw85::Status const s = pw85::contact_brent(r, a, b, res);
   out[0] = res.mu2;
   out[1] = res.lambda;
-  return s;
+  return pw85::contact_brent_status(r, a, b, res, s);
 }
 
 }  // extern "C"

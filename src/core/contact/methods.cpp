@@ -183,6 +183,24 @@ static_assert(sizeof kMethods / sizeof kMethods[0] == kMethodCount,
 
 }  // namespace
 
+Status contact_brent_status(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in,
+                           ContactResult const &cr, Status s) noexcept {
+  if (s != kOk || (r_in[0] == 0.0 && r_in[1] == 0.0 && r_in[2] == 0.0)) return s;
+  // The rescaled problem of brent.cpp (exact): r' = 2^-er r, Q' = 2^-eq Q.
+  int const er = cr.er, eq = cr.eq;
+  Vec3 r;
+  Sym3 q1, q2;
+  for (int i = 0; i < kDim; ++i) r[i] = std::ldexp(r_in[i], -er);
+  for (int i = 0; i < kSym; ++i) {
+    q1[i] = std::ldexp(q1_in[i], -eq);
+    q2[i] = std::ldexp(q2_in[i], -eq);
+  }
+  double const mu2 = cr.mu2_rescaled;
+  double f;
+  double const err = error_at(mu2, cr.lambda, r, q1, q2, f);
+  return err <= kBrentRelAccuracy * mu2 ? kOk : kInaccurate;
+}
+
 Status contact_method_in_range(int method, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                                MethodResult &res) noexcept {
   res.method = method;
