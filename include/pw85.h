@@ -195,14 +195,20 @@ PW85_API void pw85__residual(double lambda, double const r12[PW85_DIM],
  *     out[0] = mu^2,  out[1] = lambda (the maximiser of f).
  * r12 = c2 - c1 joins the centres; q1, q2 are the quadratic forms.
  * r12 = 0 gives mu^2 = 0 and lambda = 0.5 with PW85_OK.
- * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity),
+ * Returns PW85_OK (mu^2 within 1e-10 relative, according to the error
+ * estimate of PW85_METHOD_BRENT, docs/methods.md eq. (M10)),
+ * PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity),
  * PW85_ERR_NOT_SPD (q1 or q2 not positive definite),
  * PW85_ERR_NO_CONVERGENCE (Brent did not reach PW85_LAMBDA_ATOL in
  * PW85_MAX_ITER iterations and the refined residual does not show
  * convergence; the estimate is still written, mu^2 NaN if f could not be
- * evaluated) or PW85_ERR_RANGE (mu^2 above DBL_MAX or below DBL_MIN,
- * written rounded: +Inf, subnormal or 0). On the first two errors out is filled with NaN (when out is
- * not NULL). */
+ * evaluated), PW85_ERR_RANGE (mu^2 above DBL_MAX or below DBL_MIN, written
+ * rounded: +Inf, subnormal or 0) or PW85_ERR_INACCURATE (converged, but
+ * that estimate exceeds 1e-10 mu^2: ill-conditioned Q(lambda); pw85 1.0
+ * returned success). The
+ * status is that of pw85_contact_function_method() with PW85_METHOD_BRENT,
+ * and out holds pw85 1.0's values whatever the status. On the first two
+ * errors out is filled with NaN (when out is not NULL). */
 PW85_API int pw85_contact_function(double const r12[PW85_DIM],
                                    double const q1[PW85_SYM],
                                    double const q2[PW85_SYM], double out[2]);
@@ -334,13 +340,19 @@ typedef struct pw85_result {
  *   PW85_ERR_INACCURATE        result written, but mu2_error exceeds the
  *                              documented relative accuracy times mu2;
  *   PW85_ERR_NO_CONVERGENCE    the iteration stopped early; best estimate
- *                              written (finite);
+ *                              written (finite; where the method has none,
+ *                              the largest f met by bisection on f', with
+ *                              mu2_error +inf when no bound is known, and
+ *                              mu2 = 0, lambda = 0.5 when f cannot be
+ *                              evaluated at all);
  *   PW85_ERR_RANGE             mu2 above DBL_MAX or below DBL_MIN: written
  *                              rounded (+Inf, subnormal or 0), lambda as
  *                              for PW85_OK;
  *   PW85_ERR_INVALID_ARGUMENT  NULL pointer, NaN or infinite value;
  *   PW85_ERR_NOT_SPD           q1 or q2 not positive definite;
  *   PW85_ERR_UNKNOWN_METHOD    method is not a PW85_METHOD_* value.
+ * With the first four, lambda is in [0, 1], mu2 >= 0 (+inf only where
+ * mu2 exceeds the range of double) and mu2_error is never NaN.
  * On the last three errors mu2, lambda and mu2_error are NaN and iterations
  * is 0 (nothing is written when res is NULL). Never allocates. With
  * PW85_METHOD_DEFAULT the last bits may depend on the CPU (top of this

@@ -66,24 +66,29 @@ static void test_spheres(void) {
   g_rand_free(rng);
 }
 
-/* Identical ellipsoids: f = lambda (1 - lambda) r^T Q^{-1} r, maximum at 1/2. */
+/* Identical ellipsoids: f = lambda (1 - lambda) r^T Q^{-1} r, maximum at 1/2.
+ * PW85_ERR_INACCURATE where the error estimate (M10) cannot vouch for 1e-10
+ * (it grows with kappa(Q)); the values are accurate anyway. */
 static void check_identical(double lo, double hi, double rtol) {
   GRand *rng = g_rand_new_with_seed(42);
   double max_err = 0.0;
+  int flagged = 0;
   for (int n = 0; n < 1000; n++) {
     double radii[3], axes[9], q[6], r12[3], out[2];
     random_radii(rng, lo, hi, radii);
     random_axes(rng, axes);
     make_q(radii, axes, q);
     for (int i = 0; i < 3; i++) r12[i] = g_rand_double_range(rng, -hi, hi);
-    g_assert_cmpint(pw85_contact_function(r12, q, q, out), ==, PW85_OK);
+    int const status = pw85_contact_function(r12, q, q, out);
+    g_assert_true(status == PW85_OK || status == PW85_ERR_INACCURATE);
+    flagged += status == PW85_ERR_INACCURATE;
     long double const x[3] = {r12[0], r12[1], r12[2]};
     double const expected = (double)(0.25L * xT_inv_x_ld(q, x));
     max_err = fmax(max_err, rel_error(out[0], expected));
     g_assert_cmpfloat(fabs(out[1] - 0.5), <=, 1e-6);
   }
-  g_test_message("identical ellipsoids, semi-axes in [%g, %g]: max rel. error %.3g", lo, hi,
-                 max_err);
+  g_test_message("identical ellipsoids, semi-axes in [%g, %g]: max rel. error %.3g, "
+                 "%d of 1000 PW85_ERR_INACCURATE", lo, hi, max_err, flagged);
   g_assert_cmpfloat(max_err, <=, rtol);
   g_rand_free(rng);
 }
@@ -218,7 +223,7 @@ static void test_contact_point(void) {
 static void test_self_consistency_grid(void) {
   static const double distances[3] = {0.15, 1.1, 11.};
   double worst_mu = 0, worst_df = 0;
-  long failures = 0, count = 0;
+  long failures = 0, inaccurate = 0, count = 0;
   for (int i1 = 0; i1 < 108; i1++) {
     double q1[6];
     grid_spheroid(i1, q1);
@@ -233,7 +238,8 @@ static void test_self_consistency_grid(void) {
           double out[2], res[3];
           int const status = pw85_contact_function(r12, q1, q2, out);
           count++;
-          if (status != PW85_OK) {
+          if (status == PW85_ERR_INACCURATE) inaccurate++;
+          if (status != PW85_OK && status != PW85_ERR_INACCURATE) {
             failures++;
             continue;
           }
@@ -253,9 +259,9 @@ static void test_self_consistency_grid(void) {
       }
     }
   }
-  g_test_message("%ld calls, %ld non-OK; max rel. mismatch mu1^2/mu2^2 vs mu^2: %.3g; "
-                 "max |f'|/|f''|: %.3g",
-                 count, failures, worst_mu, worst_df);
+  g_test_message("%ld calls, %ld neither OK nor INACCURATE, %ld INACCURATE; max rel. "
+                 "mismatch mu1^2/mu2^2 vs mu^2: %.3g; max |f'|/|f''|: %.3g",
+                 count, failures, inaccurate, worst_mu, worst_df);
   g_assert_cmpint(failures, ==, 0);
   g_assert_cmpfloat(worst_mu, <=, 1e-10);
   g_assert_cmpfloat(worst_df, <=, PW85_LAMBDA_ATOL);
@@ -301,7 +307,7 @@ typedef struct {
   GArray *err;       /* relative errors of all rows */
   double max_all;    /* max over all rows */
   double max_ok;     /* max over the rows with PW85_OK */
-  gsize n, n_ok, n_noconv, n_other;
+  gsize n, n_ok, n_noconv, n_inaccurate, n_other;
   gsize above;       /* rows with error > 1e-10 */
   gsize above_ok;    /* ... of which returned PW85_OK */
   gsize wrong_side;  /* overlap verdict (mu^2 < 1) differs from the reference */
@@ -352,6 +358,8 @@ static void run_row(const RefPairs *p, gsize i, Stats *s, int max_listed) {
     s->max_ok = fmax(s->max_ok, err);
   } else if (status == PW85_ERR_NO_CONVERGENCE) {
     s->n_noconv++;
+  } else if (status == PW85_ERR_INACCURATE) {
+    s->n_inaccurate++;
   } else {
     s->n_other++;
     g_test_message("%s[%zu]: unexpected status %d (%s)", p->group, i, status,
@@ -378,9 +386,9 @@ static void run_row(const RefPairs *p, gsize i, Stats *s, int max_listed) {
 static void stats_report(const char *what, const Stats *s) {
   g_test_message("%s: %zu rows, rel. error of mu^2: max %.3g (max with PW85_OK %.3g, row %zu), "
                  "median %.3g; %zu above 1e-10 (%zu of them with PW85_OK); "
-                 "PW85_ERR_NO_CONVERGENCE: %zu; other statuses: %zu",
+                 "PW85_ERR_NO_CONVERGENCE: %zu; PW85_ERR_INACCURATE: %zu; other statuses: %zu",
                  what, s->n, stats_max(s), s->max_ok, s->worst, stats_median(s), s->above,
-                 s->above_ok, s->n_noconv, s->n_other);
+                 s->above_ok, s->n_noconv, s->n_inaccurate, s->n_other);
 }
 
 static void stats_clear(Stats *s) { g_array_free(s->err, TRUE); }

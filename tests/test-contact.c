@@ -122,7 +122,7 @@ static void check_pair(const double r[3], const double q1[6], const double q2[6]
   if (full) {
     double out[2];
     int s = pw85_contact_function(r, q1, q2, out);
-    g_assert_true(s == PW85_OK || s == PW85_ERR_NO_CONVERGENCE);
+    g_assert_true(s == PW85_OK || s == PW85_ERR_INACCURATE || s == PW85_ERR_NO_CONVERGENCE);
     /* pw85 1.0's Brent algorithm is less accurate on ill-conditioned pairs. */
     g_assert_cmpfloat(rel_error(c.mu2, out[0]), <=, 1e-6);
     pw85_result res;

@@ -646,11 +646,52 @@ static void test_brent_is_legacy(void) {
     pw85_result res;
     int s1 = pw85_contact_function(r, q1, q2, out);
     int s2 = pw85_contact_function_method(r, q1, q2, PW85_METHOD_BRENT, &res);
-    g_assert_cmpint(s1, ==, PW85_OK);
     g_assert_true(s2 == PW85_OK || s2 == PW85_ERR_INACCURATE);
+    g_assert_cmpint(s1, ==, s2);
     g_assert_cmpfloat(res.mu2, ==, out[0]);
     g_assert_cmpfloat(res.lambda, ==, out[1]);
   }
+  g_rand_free(rng);
+}
+
+/* pw85_contact_function (pw85 1.0's Brent) on random ellipsoids with
+ * semi-axes log-uniform in [1e-4, 1e4] (kappa(Q) up to 1e16, within the
+ * reach of the __float128 reference): PW85_OK only within the 1e-10 of
+ * PW85_METHOD_BRENT; the others PW85_ERR_INACCURATE or
+ * PW85_ERR_NO_CONVERGENCE, with the same values as method BRENT. */
+static void test_legacy_ill_conditioned(void) {
+  GRand *rng = g_rand_new_with_seed(7007);
+  int flagged = 0, n = 0, mismatched = 0;
+  double worst_ok = 0.0, worst = 0.0;
+  for (int i = 0; i < 2000; ++i) {
+    double radii[3], axes[9], q1[6], q2[6], r[3], out[2];
+    random_radii(rng, 1e-4, 1e4, radii);
+    random_axes(rng, axes);
+    make_q(radii, axes, q1);
+    random_radii(rng, 1e-4, 1e4, radii);
+    random_axes(rng, axes);
+    make_q(radii, axes, q2);
+    random_dir(rng, exp(g_rand_double_range(rng, log(1e-4), log(1e4))), r);
+    int const s = pw85_contact_function(r, q1, q2, out);
+    pw85_result res;
+    int const sm = pw85_contact_function_method(r, q1, q2, PW85_METHOD_BRENT, &res);
+    if (s == PW85_ERR_NOT_SPD || sm == PW85_ERR_NOT_SPD) continue; /* kappa(Q) ~ 1 / u */
+    double const e = rel_error(out[0], ref_mu2(r, q1, q2));
+    n++;
+    worst = fmax(worst, e);
+    if (s == PW85_OK) {
+      worst_ok = fmax(worst_ok, e);
+      g_assert_cmpfloat(e, <=, 1e-10);
+    } else {
+      flagged++;
+      g_assert_true(s == PW85_ERR_INACCURATE || s == PW85_ERR_NO_CONVERGENCE);
+    }
+    mismatched += s != sm;
+    g_assert_cmpfloat(res.mu2, ==, out[0]);
+  }
+  g_assert_cmpint(mismatched, ==, 0);
+  g_test_message("pw85_contact_function, semi-axes in [1e-4, 1e4]: %d of %d flagged; max "
+                 "rel. error %.3g, with PW85_OK %.3g", flagged, n, worst, worst_ok);
   g_rand_free(rng);
 }
 
@@ -737,5 +778,7 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact_function_method/bad_input", test_errors);
   g_test_add_func("/pw85_contact_function_method/brent/same_as_pw85_contact_function",
                   test_brent_is_legacy);
+  g_test_add_func("/pw85_contact_function/ill_conditioned/ok_within_1e-10",
+                  test_legacy_ill_conditioned);
   return g_test_run();
 }

@@ -174,16 +174,19 @@ int pw85_contact_function(double const r12[PW85_DIM], double const q1[PW85_SYM],
     return status;
   }
   pw85::ContactResult res;
-  int const s = pw85::contact_brent(pw85::load_vec3(r12), pw85::load_sym3(q1),
-                                    pw85::load_sym3(q2), res);
+  pw85::Vec3 const r = pw85::load_vec3(r12);
+  pw85::Sym3 const a = pw85::load_sym3(q1), b = pw85::load_sym3(q2);
+  pw85::Status const s = pw85::contact_brent(r, a, b, res);
   out[0] = res.mu2;
   out[1] = res.lambda;
+  pw85::Status const checked = pw85::contact_brent_status(r, a, b, res, s);
   // mu^2 out of the range of double (written rounded: +Inf, subnormal or 0;
   // r12 = 0 gives mu^2 = 0 exactly).
   bool const r_zero = r12[0] == 0.0 && r12[1] == 0.0 && r12[2] == 0.0;
-  if (s == PW85_OK && !r_zero && !(res.mu2 >= DBL_MIN && res.mu2 <= DBL_MAX))
+  if ((checked == PW85_OK || checked == PW85_ERR_INACCURATE) && !r_zero &&
+      !(res.mu2 >= DBL_MIN && res.mu2 <= DBL_MAX))
     return PW85_ERR_RANGE;
-  return s;
+  return checked;
 }
 
 }  // extern "C"

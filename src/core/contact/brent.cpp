@@ -62,9 +62,10 @@ double f_neg_for_gsl(double lambda, void *params) {
 Status contact_brent(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in,
                      ContactResult &res) noexcept {
   res.iterations = 0;
+  res.er = res.eq = 0;
   if (r_in[0] == 0.0 && r_in[1] == 0.0 && r_in[2] == 0.0) {
     // f vanishes identically: mu^2 = 0, every lambda is a maximiser.
-    res.mu2 = 0.0;
+    res.mu2 = res.mu2_rescaled = 0.0;
     res.lambda = 0.5;
     return kOk;
   }
@@ -79,6 +80,8 @@ Status contact_brent(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in,
   }
   p.failed = false;
   int const mu2_exponent = 2 * er - eq;
+  res.er = er;
+  res.eq = eq;
 
   // Step 1: Brent. f(0) = f(1) = 0 < f(1/2), so [0, 1] brackets the maximum;
   // GSL is only called once that has been checked.
@@ -110,7 +113,7 @@ Status contact_brent(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in,
   // Step 2: Newton on g from the Brent estimate.
   Residual best;
   if (!residual_cholesky(lambda_brent, p.r, p.q1, p.q2, best)) {
-    res.mu2 = std::nan("");
+    res.mu2 = res.mu2_rescaled = std::nan("");
     res.lambda = lambda_brent;
     return kNoConvergence;
   }
@@ -143,6 +146,7 @@ Status contact_brent(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in,
       if (std::isfinite(f) && f >= 0.0) best.f = f;
     }
   }
+  res.mu2_rescaled = best.f;
   res.mu2 = std::ldexp(best.f, mu2_exponent);
   res.lambda = best_lambda;
   // Brent's bracket did not close, but the refined residual may still show

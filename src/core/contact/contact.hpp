@@ -17,12 +17,23 @@ struct ContactResult {
   double mu2;       // value of the contact function
   double lambda;    // maximiser of f on [0, 1]
   int iterations;   // iterations of the method (method-specific meaning)
+  // The rescaled problem contact_brent solves: r' = 2^-er r, Q' = 2^-eq Q,
+  // mu2 = 2^(2 er - eq) mu2_rescaled.
+  double mu2_rescaled;
+  int er, eq;
 };
 
 // pw85 1.0's algorithm: Brent (GSL) on -f over [0, 1], then Newton on the
 // residual g. Returns kOk or kNoConvergence (estimate still written).
 Status contact_brent(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                      ContactResult &res) noexcept;
+
+// Status of pw85_contact_function for a result cr of contact_brent with
+// status s: kInaccurate where s is kOk but the error estimate (M10) at
+// cr.lambda (that of PW85_METHOD_BRENT, contact/methods.cpp) exceeds
+// kBrentRelAccuracy mu2; s otherwise.
+Status contact_brent_status(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                            ContactResult const &cr, Status s) noexcept;
 
 // Method identifiers of pw85_contact_function_method; equal to the
 // PW85_METHOD_* macros of include/pw85.h (checked in src/capi).

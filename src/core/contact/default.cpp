@@ -268,7 +268,9 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
             kDDSlopeRel * gap + std::fabs(d3f * h * h * h) / 3.0;
         if (model_err <= kDDGapTol * fd.f) {
           res.mu2 = fd.f + gap;
-          res.lambda = lambda + h;
+          // The maximiser lies in [0, 1] (eq. (M3)); lambda + h, a rounding
+          // past 0 or 1 where it is within an ulp of them, is clamped.
+          res.lambda = std::fmin(std::fmax(lambda + h, 0.0), 1.0);
           res.mu2_error = rel_dd * res.mu2 + model_err;
           return res.mu2_error <= kDefaultRelAccuracy * res.mu2 ? kOk : kInaccurate;
         }

@@ -31,11 +31,21 @@ bool newton_iterate(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Sym3 const &d
                     double lambda, NewtonState &st, int &iterations) noexcept {
   double lo = 0.0, hi = 1.0;
   FEval &e = st.e;
+  // Every field is written on every return: mu2 = e.f at lambda = e.lambda
+  // (no extrapolation, rel not yet computed) until the stopping test (M9)
+  // says otherwise; NaN while no evaluation has succeeded.
+  e = FEval{};
+  e.f = std::nan("");
+  st.mu2 = st.lambda = std::nan("");
+  st.step = st.trunc = st.edf = 0.0;
+  st.rel = -1.0;
   for (int it = 0; it < kMaxIter; ++it) {
     ++iterations;
     FEval cur;
     if (!f_eval(lambda, r, q1, q2, d, cur)) return false;
     e = cur;
+    st.lambda = e.lambda;
+    st.mu2 = e.f;
     if (e.df > 0.0)
       lo = lambda;
     else
@@ -89,11 +99,6 @@ bool newton_iterate(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Sym3 const &d
     }
     lambda = next;
   }
-  st.lambda = e.lambda;
-  st.step = 0.0;
-  st.mu2 = e.f;
-  st.trunc = 0.0;
-  st.rel = -1.0;
   return false;
 }
 

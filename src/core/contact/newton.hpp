@@ -8,7 +8,7 @@
 namespace pw85 {
 
 struct NewtonState {
-  FEval e;        // last successful evaluation (e.f untouched if none)
+  FEval e;        // last successful evaluation (e.f NaN if none)
   double mu2;     // estimate of max f (Taylor-extrapolated from e when step != 0)
   double lambda;  // estimate of the maximiser (e.lambda + step)
   double step;    // extrapolation step (0: mu2 = e.f)
