@@ -29,11 +29,15 @@ inline bool ldl_positive(double const *a) noexcept {
   return d2 > 0.0 && d2 <= kMaxDouble;   // false for NaN, +Inf
 }
 
-// ldl_positive of 2^-e a, e the exponent of max |a_ij| (exact scaling):
-// the same decision as ldl_positive wherever that neither underflows nor
-// overflows, and the right one for a matrix of subnormal or huge entries
-// (whose pivots 1/a_00, a_ij a_ik / a_ii leave the double range).
+// Positive definiteness of a matrix of any magnitude: ldl_positive of a
+// itself, or of 2^-e a, e the exponent of max |a_ij| (exact scaling, unless
+// entries below 2^e 2^-1074 are flushed). The scaled test decides matrices
+// of subnormal or huge entries (whose pivots 1/a_00, a_ij a_ik / a_ii leave
+// the double range); the unscaled one those whose entries span more than
+// the double range, e.g. diag(DBL_MAX, 4.9e-324, 1), where the scaling
+// flushes the small entries to 0.
 inline bool ldl_positive_scaled(double const *a) noexcept {
+  if (ldl_positive(a)) return true;
   int const e = max_exponent(a, 6);
   double b[6];
   for (int i = 0; i < 6; ++i) b[i] = std::ldexp(a[i], -e);
