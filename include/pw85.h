@@ -24,6 +24,12 @@
  * mutable state, never prints, never aborts, and never changes GSL's
  * process-wide error handler.
  *
+ * Outputs and inputs: every function that computes one result (all but the
+ * batch calls) reads all its inputs before it writes an output, so an
+ * output may be one of its input arrays (e.g. pw85_spheroid(a, c, n, n)
+ * with n a double[6], or out == r12). The outputs of the batch calls
+ * (pw85_*_batch) must not overlap their inputs.
+ *
  * Results and the CPU: PW85_METHOD_DEFAULT runs a different algorithm on
  * x86-64 CPUs with AVX-512 (x86-64-v4) when the library is built with
  * GCC >= 12 and the meson option isa_dispatch enabled (its default): a

@@ -13,7 +13,9 @@
  * Unlike pw85 1.0, every function validates its input and the contact
  * functions return a status code of pw85.h instead of always 0. Functions
  * returning a double return NaN on bad input. No function prints, aborts or
- * allocates; all are reentrant and thread-safe.
+ * allocates; all are reentrant and thread-safe. Every function reads all its
+ * inputs before it writes an output, so an output may be one of its input
+ * arrays (as in pw85.h).
  *
  * Storage conventions are those of pw85.h: vectors are double[3], symmetric
  * matrices double[6] = {A00, A01, A02, A11, A12, A22}.

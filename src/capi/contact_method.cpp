@@ -18,17 +18,20 @@ extern "C" int pw85_contact_function_method(double const r12[PW85_DIM],
                                             double const q2[PW85_SYM], int method,
                                             pw85_result *res) {
   if (res == nullptr) return PW85_ERR_INVALID_ARGUMENT;
-  double const nan = std::nan("");
-  res->mu2 = nan;
-  res->lambda = nan;
-  res->mu2_error = nan;
-  res->iterations = 0;
-  res->method = method;
-  if (r12 == nullptr || q1 == nullptr || q2 == nullptr) return PW85_ERR_INVALID_ARGUMENT;
+  // Every input is read before *res is written (res may alias them).
   pw85::MethodResult m;
-  int const s = pw85::contact_method_entry(r12, q1, q2, method, m);
-  if (s == PW85_ERR_UNKNOWN_METHOD || s == PW85_ERR_INVALID_ARGUMENT || s == PW85_ERR_NOT_SPD)
+  int const s = r12 == nullptr || q1 == nullptr || q2 == nullptr
+                    ? PW85_ERR_INVALID_ARGUMENT
+                    : pw85::contact_method_entry(r12, q1, q2, method, m);
+  if (s == PW85_ERR_UNKNOWN_METHOD || s == PW85_ERR_INVALID_ARGUMENT || s == PW85_ERR_NOT_SPD) {
+    double const nan = std::nan("");
+    res->mu2 = nan;
+    res->lambda = nan;
+    res->mu2_error = nan;
+    res->iterations = 0;
+    res->method = method;
     return s;
+  }
   res->mu2 = m.mu2;
   res->lambda = m.lambda;
   res->mu2_error = m.mu2_error;

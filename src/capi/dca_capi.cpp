@@ -59,11 +59,10 @@ pw85::Status validate_pair_2d(double const *r, double const *q1, double const *q
   return pw85::kOk;
 }
 
+// The entry points compute into locals (d NaN, evaluations 0 until a result
+// exists) and write the outputs last: outputs may alias the inputs.
 int dca_zheng_checked(double const u[3], double const q1[6], double const q2[6],
-                      double theta_tol, double *d, int *evaluations) {
-  if (evaluations != nullptr) *evaluations = 0;
-  if (d == nullptr) return PW85_ERR_INVALID_ARGUMENT;
-  *d = std::nan("");
+                      double theta_tol, double &d, int &evaluations) {
   int const status = pw85::capi::validate_pair(u, q1, q2);
   if (status != PW85_OK) return status;
   if (!std::isfinite(theta_tol) || theta_tol < 0.0) return PW85_ERR_INVALID_ARGUMENT;
@@ -73,8 +72,32 @@ int dca_zheng_checked(double const u[3], double const q1[6], double const q2[6],
   pw85::DcaResult res;
   int const s = pw85::dca_zheng(un, pw85::load_sym3(q1), pw85::load_sym3(q2), theta_tol,
                                 PW85_DCA_MAX_EVAL, res);
-  if (evaluations != nullptr) *evaluations = res.evaluations;
-  *d = res.d;
+  evaluations = res.evaluations;
+  d = res.d;
+  return s;
+}
+
+int dca_2d_checked(double const u[2], double const q1[3], double const q2[3], double &d) {
+  int const status = validate_pair_2d(u, q1, q2);
+  if (status != PW85_OK) return status;
+  pw85::Vec2 un;
+  if (!normalise<2>(u, un.x)) return PW85_ERR_INVALID_ARGUMENT;
+  pw85::Dca2dResult res;
+  int const s = pw85::dca_2d(un, pw85::load_sym2(q1), pw85::load_sym2(q2), res);
+  if (s != PW85_OK && s != PW85_ERR_NO_CONVERGENCE) return s;
+  d = res.d;
+  return s;
+}
+
+int dca_checked(double const u[3], double const q1[6], double const q2[6], int method,
+                double &d) {
+  int const status = pw85::capi::validate_pair(u, q1, q2);
+  if (status != PW85_OK) return status;
+  if (u[0] == 0.0 && u[1] == 0.0 && u[2] == 0.0) return PW85_ERR_INVALID_ARGUMENT;
+  double dd = std::nan("");
+  int const s = pw85::dca_by_contact_function(pw85::load_vec3(u), pw85::load_sym3(q1),
+                                              pw85::load_sym3(q2), method, dd);
+  d = dd;
   return s;
 }
 
@@ -84,15 +107,9 @@ extern "C" {
 
 int pw85_dca_2d(double const u[2], double const q1[3], double const q2[3], double *d) {
   if (d == nullptr) return PW85_ERR_INVALID_ARGUMENT;
-  *d = std::nan("");
-  int const status = validate_pair_2d(u, q1, q2);
-  if (status != PW85_OK) return status;
-  pw85::Vec2 un;
-  if (!normalise<2>(u, un.x)) return PW85_ERR_INVALID_ARGUMENT;
-  pw85::Dca2dResult res;
-  int const s = pw85::dca_2d(un, pw85::load_sym2(q1), pw85::load_sym2(q2), res);
-  if (s != PW85_OK && s != PW85_ERR_NO_CONVERGENCE) return s;
-  *d = res.d;
+  double dd = std::nan("");
+  int const s = dca_2d_checked(u, q1, q2, dd);
+  *d = dd;
   return s;
 }
 
@@ -116,19 +133,25 @@ int pw85_contact_function_2d(double const r12[2], double const q1[3], double con
 
 int pw85_dca(double const u[3], double const q1[6], double const q2[6], int method,
              double *d) {
-  if (method == PW85_METHOD_ZHENG) return dca_zheng_checked(u, q1, q2, 0.0, d, nullptr);
   if (d == nullptr) return PW85_ERR_INVALID_ARGUMENT;
-  *d = std::nan("");
-  int const status = pw85::capi::validate_pair(u, q1, q2);
-  if (status != PW85_OK) return status;
-  if (u[0] == 0.0 && u[1] == 0.0 && u[2] == 0.0) return PW85_ERR_INVALID_ARGUMENT;
-  return pw85::dca_by_contact_function(pw85::load_vec3(u), pw85::load_sym3(q1),
-                                       pw85::load_sym3(q2), method, *d);
+  double dd = std::nan("");
+  int evaluations = 0;
+  int const s = method == PW85_METHOD_ZHENG
+                    ? dca_zheng_checked(u, q1, q2, 0.0, dd, evaluations)
+                    : dca_checked(u, q1, q2, method, dd);
+  *d = dd;
+  return s;
 }
 
 int pw85_dca_ex(double const u[3], double const q1[6], double const q2[6], double theta_tol,
                 double *d, int *evaluations) {
-  return dca_zheng_checked(u, q1, q2, theta_tol, d, evaluations);
+  double dd = std::nan("");
+  int ev = 0;
+  int const s = d == nullptr ? PW85_ERR_INVALID_ARGUMENT
+                             : dca_zheng_checked(u, q1, q2, theta_tol, dd, ev);
+  if (evaluations != nullptr) *evaluations = ev;
+  if (d != nullptr) *d = dd;
+  return s;
 }
 
 }  // extern "C"

@@ -57,8 +57,13 @@ inline D2 abs(D2 x) noexcept {
   return reinterpret_cast<D2>(reinterpret_cast<I2>(x) & I2{0x7fffffffffffffffLL, 0x7fffffffffffffffLL});
 }
 inline D2 max(D2 a, D2 b) noexcept { return a > b ? a : b; }  // NaN in a: b
+#if defined(__clang__)
+inline D2 lo_lanes(D2 a, D2 b) noexcept { return __builtin_shufflevector(a, b, 0, 2); }
+inline D2 hi_lanes(D2 a, D2 b) noexcept { return __builtin_shufflevector(a, b, 1, 3); }
+#else
 inline D2 lo_lanes(D2 a, D2 b) noexcept { return __builtin_shuffle(a, b, I2{0, 2}); }
 inline D2 hi_lanes(D2 a, D2 b) noexcept { return __builtin_shuffle(a, b, I2{1, 3}); }
+#endif
 }  // namespace v2
 
 // The L D L^T pivot test of ldl_positive (above: all pivots
