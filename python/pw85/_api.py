@@ -384,8 +384,8 @@ def _scene(centres, q, pairs, box):
         p = np.asarray(pairs)
     except (ValueError, TypeError) as e:
         raise ValueError(f"pairs: not a regular array of integers ({e})") from None
-    if p.size == 0 and p.dtype.kind == "f":
-        p = p.astype(np.int64)
+    if p.size == 0 and p.ndim == 1:
+        p = np.zeros((0, 2), np.int64)
     if p.dtype.kind not in "iu":
         raise TypeError(f"pairs: expected integers, got dtype {p.dtype}")
     if p.ndim != 2 or p.shape[1] != 2:
@@ -396,8 +396,9 @@ def _scene(centres, q, pairs, box):
     else:
         bx = _arr(box, "box", 6, ndim=1)
         L, t = bx[:3], bx[3:]
-        if not (np.all(np.isfinite(bx)) and np.all(L > 0)
-                and np.all(np.isfinite(t * np.array([L[1], L[2], L[2]])))):
+        with np.errstate(over="ignore", invalid="ignore"):
+            tilts_ok = np.all(np.isfinite(t * np.array([L[1], L[2], L[2]])))
+        if not (np.all(np.isfinite(bx)) and np.all(L > 0) and tilts_ok):
             raise ValueError(f"box: expected {{Lx, Ly, Lz, xy, xz, yz}} with finite lengths > 0 "
                              f"and finite tilts, got {bx.tolist()}")
         pbox = bx.ctypes.data
