@@ -27,7 +27,8 @@ def random_pairs(m, seed=0, lo=0.5, hi=2.0):
 
 def test_version_and_names():
     header = os.path.join(os.path.dirname(__file__), "..", "..", "include", "pw85.h")
-    v = re.search(r'#define PW85_VERSION "(.*)"', open(header).read()).group(1)
+    with open(header) as f:
+        v = re.search(r'#define PW85_VERSION "(.*)"', f.read()).group(1)
     assert pw85.__version__ == v == pypw85.__version__
     assert [int(m) for m in pw85.Method] == [0, 1, 2, 3, 4]
     assert pw85.Method.DEFAULT == 0 and pw85.Method.ZHENG == 4
