@@ -22,12 +22,14 @@ def pairs(m):
 
 R12, QA, QB = pairs(100000)
 R12_BIG = np.concatenate([R12] * 10)
+QA_BIG = np.tile(QA, (len(R12_BIG), 1))
+QB_BIG = np.tile(QB, (len(R12_BIG), 1))
 N = 50
 CENTRES = np.random.default_rng(1).uniform(0, 10, (N, 3))
 SCENE_PAIRS = np.random.default_rng(2).integers(0, N, (200000, 2))
 CALLS = {
     "contact_function": lambda: pw85.contact_function(R12, QA, QB, method="brent", nthreads=1),
-    "overlap": lambda: pw85.overlap(R12_BIG, QA, QB, nthreads=1),
+    "overlap": lambda: pw85.overlap(R12_BIG, QA_BIG, QB_BIG, nthreads=1),
     "scene_contact": lambda: pw85.scene_contact(CENTRES, QA, SCENE_PAIRS, check=False,
                                                 nthreads=1),
 }
