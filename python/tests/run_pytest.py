@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Runs one pytest file for `meson test`: exit 77 (skipped) when pytest or
 NumPy is missing or the build sets PW85_PYTHON_TEST_SKIP, and when every
-test of the file was skipped; pytest's exit status otherwise. (The main
+test of the file was skipped (or the file skipped itself, pytest's status
+5); pytest's exit status otherwise. (The main
 guard matters: Dask's worker processes re-import this __main__.)
 
 usage: run_pytest.py TESTFILE
@@ -35,6 +36,8 @@ def main():
     count = Count()
     status = pytest.main(["-q", "-rs", "-p", "no:cacheprovider", sys.argv[1]], plugins=[count])
     if status == 0 and count.outcomes and all(o == "skipped" for o in count.outcomes):
+        return 77
+    if status == pytest.ExitCode.NO_TESTS_COLLECTED:
         return 77
     return int(status)
 
