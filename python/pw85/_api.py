@@ -91,19 +91,17 @@ def _nthreads(nthreads):
 
 
 def _method(method):
-    if isinstance(method, bool):
-        raise TypeError("method: expected a pw85.Method, an int or a name, got bool")
-    try:
-        return _METHODS[method]
-    except (KeyError, TypeError):
-        pass
-    if isinstance(method, str) and method.lower() in _METHODS:
-        return _METHODS[method.lower()]
-    names = ", ".join(repr(m.name.lower()) for m in Method)
-    if isinstance(method, (str, int, np.integer)):
+    if isinstance(method, str):
+        m = _METHODS.get(method.lower())
+    elif isinstance(method, (int, np.integer)) and not isinstance(method, (bool, np.bool_)):
+        m = _METHODS.get(int(method))
+    else:
+        raise TypeError(f"method: expected a pw85.Method, an int or a name, "
+                        f"got {type(method).__name__}")
+    if m is None:
+        names = ", ".join(repr(m.name.lower()) for m in Method)
         raise ValueError(f"method: unknown method {method!r} (one of {names} or pw85.Method)")
-    raise TypeError(f"method: expected a pw85.Method, an int or one of {names}, "
-                    f"got {type(method).__name__}")
+    return m
 
 
 def _size(batch):
@@ -267,11 +265,8 @@ def contact_function(r12, q1, q2, method="default", nthreads=0, check=True):
     pw85.Error on the first pair whose status is not PW85_OK; check=False:
     returns (mu2, lambda_, status), failing pairs NaN."""
     # the one-pair path is inlined (a function call costs ~0.1 us here)
-    try:
-        meth = _METHODS[method]
-        if method is True or method is False:
-            raise TypeError
-    except (KeyError, TypeError):
+    meth = _METHODS.get(method) if type(method) is str else None
+    if meth is None:
         meth = _method(method)
     nt = nthreads
     if type(nt) is not int or not 0 <= nt <= _INT_MAX:

@@ -78,7 +78,8 @@ def test_contact_r12_zero_and_2d_index():
 
 @pytest.mark.parametrize("method, exc", [
     ("foo", ValueError), ("", ValueError), (7, ValueError), (-1, ValueError),
-    (None, TypeError), (1.5, TypeError), (True, TypeError), ([0], TypeError)])
+    (None, TypeError), (1.5, TypeError), (1.0, TypeError), (True, TypeError),
+    (np.bool_(False), TypeError), ([0], TypeError), (np.array(0), TypeError)])
 def test_bad_method(method, exc):
     with pytest.raises(exc, match="method"):
         pw85.contact_function(R12, Q1, Q2, method=method)
