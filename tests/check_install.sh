@@ -1,18 +1,22 @@
 #!/bin/sh
 # Install test: stage `meson install` into a temporary directory, then build
 # the documented examples against the staged files only, the way a user
-# would (pkg-config for C, the installed pw85.mod for Fortran), run them and
-# check what they print. Leaves nothing behind.
+# would (pkg-config for C, the installed pw85.mod for Fortran, the installed
+# Python packages with no environment variable), run them and check what
+# they print. Leaves nothing behind.
 #
-# usage: check_install.sh BUILDDIR SRCDIR PREFIX LIBDIR INCLUDEDIR SANITIZE CC [FC]
+# usage: check_install.sh BUILDDIR SRCDIR PREFIX LIBDIR INCLUDEDIR SANITIZE CC PYTHON PURELIB [FC]
 #   LIBDIR, INCLUDEDIR: as get_option() gives them (relative to PREFIX or
 #   absolute); SANITIZE: get_option('b_sanitize') (the staged library of a
 #   sanitizer build needs the examples linked with the same runtime);
-#   FC: Fortran compiler, empty or absent to skip the Fortran example.
+#   PYTHON: the `python` option's interpreter; PURELIB: the absolute directory
+#   the Python packages are installed into; FC: Fortran compiler, empty or
+#   absent to skip the Fortran example.
 set -eu
 
 builddir=$1 srcdir=$2 prefix=$3 libdir=$4 includedir=$5 sanitize=$6 cc=$7
-fc=${8:-}
+python=$8 purelib=$9
+fc=${10:-}
 
 case $libdir in /*) ;; *) libdir=$prefix/$libdir ;; esac
 case $includedir in /*) ;; *) includedir=$prefix/$includedir ;; esac
@@ -86,6 +90,43 @@ if [ -n "$fc" ]; then
   expect "$tmp/example_f.out" "lambda = 0.166859"
 else
   echo "# no Fortran compiler: Fortran example skipped"
+fi
+
+# Python: the tutorial of pypw85 and a call of pw85 from the staged
+# site-packages, the libraries found through the installed pw85/_config.py
+# (which records $libdir) without PW85_LIBRARY or PW85_LEGACY_LIBRARY.
+pydir=$stage$purelib
+for f in pw85/__init__.py pw85/_config.py pypw85/__init__.py pypw85/legacy.py; do
+  [ -f "$pydir/$f" ] || { echo "FAIL: $pydir/$f was not installed"; exit 1; }
+done
+grep -F "LIBPW85 = \"$libdir/libpw85." "$pydir/pw85/_config.py" \
+  || { echo "FAIL: pw85/_config.py does not record $libdir"; exit 1; }
+preload=
+case $sanitize in *address*) preload=$("$cc" -print-file-name=libasan.so) ;; esac
+env -u PW85_LIBRARY -u PW85_LEGACY_LIBRARY PYTHONPATH="$pydir" \
+  ${preload:+LD_PRELOAD="$preload" ASAN_OPTIONS=detect_leaks=0} \
+  "$python" -c '
+import numpy as np, pypw85, pypw85.legacy, pw85
+from pw85 import _lib
+q1 = pypw85.spheroid(10, 0.1, np.array([0., 0., 1.]))
+q2 = pypw85.spheroid(0.5, 5., np.array([1., 0., 0.]))
+mu2, lambda_ = pypw85.contact_function(np.array([0.7, -0.7, 1.1]), q1, q2)
+print("mu^2 = %.6g" % mu2)
+print("lambda = %.6g" % lambda_)
+print("legacy mu^2 = %.6g" % pypw85.legacy.contact_function1(np.array([0.7, -0.7, 1.1]), q1, q2)[0])
+print("pw85 overlap = %s" % pw85.overlap([0.7, -0.7, 1.1], q1, q2))
+_lib.legacy()
+print("libpw85:", _lib.library_path)
+print("libpw85_legacy:", _lib.legacy_library_path)
+' >"$tmp/python.out"
+cat "$tmp/python.out"
+expect "$tmp/python.out" "mu^2 = 3.36271"
+expect "$tmp/python.out" "lambda = 0.166859"
+expect "$tmp/python.out" "legacy mu^2 = 3.36271"
+expect "$tmp/python.out" "pw85 overlap = False"
+if [ "$(grep -c "^libpw85.*: $stage" "$tmp/python.out")" != 2 ]; then
+  echo "FAIL: the Python packages do not load the staged libraries"
+  status=1
 fi
 
 exit $status

@@ -1,0 +1,31 @@
+"""Shared fixtures: the tutorial pair, the reference data (data/README.md)."""
+import os
+
+import numpy as np
+import pytest
+
+MU2_TUTORIAL = 3.362706040638343      # pw85 documentation, chapter 2.1
+LAMBDA_TUTORIAL = 0.1668589553405904
+ULP_TOL = 4  # pw85_spheroid and the compiler may move the last bits
+
+
+def within_ulps(x, ref, n=ULP_TOL):
+    return abs(x - ref) <= n * np.spacing(abs(ref))
+
+
+@pytest.fixture(scope="session")
+def refdata():
+    h5py = pytest.importorskip("h5py")
+    path = os.environ.get("PW85_REF_DATA")
+    if not path or not os.path.exists(path):
+        pytest.skip(f"no reference data ($PW85_REF_DATA = {path!r})")
+    with h5py.File(path, "r") as f:
+        data = {k: f[k][()] for k in ("radii", "directions", "spheroids", "lambdas")}
+        for g in ("contact", "near_contact"):
+            data[g] = {k: f[g][k][()] for k in ("class", "r12", "q1", "q2", "mu2", "lambda")}
+        rng = np.random.default_rng(1)
+        idx = np.sort(rng.choice(np.prod(f["F"].shape), 2000, replace=False))
+        F = f["F"][()]
+        data["F_index"] = np.unravel_index(idx, F.shape)
+        data["F"] = F[data["F_index"]]
+    return data
