@@ -9,7 +9,7 @@ import pytest
 
 import pypw85
 import pypw85.legacy
-from conftest import MU2_TUTORIAL, LAMBDA_TUTORIAL, within_ulps
+from conftest import MU2_TUTORIAL, LAMBDA_TUTORIAL, MU2_PW85_DOC, LAMBDA_PW85_DOC, DOC_RTOL, within_ulps
 
 mpmath = pytest.importorskip("mpmath")
 mpmath.mp.dps = 50
@@ -65,6 +65,8 @@ def test_tutorial():
     assert lines[0].startswith("μ² = ") and lines[1].startswith("λ = ")
     assert within_ulps(float(lines[0][5:]), MU2_TUTORIAL)
     assert within_ulps(float(lines[1][4:]), LAMBDA_TUTORIAL)
+    assert abs(float(lines[0][5:]) / MU2_PW85_DOC - 1) <= DOC_RTOL
+    assert abs(float(lines[1][4:]) / LAMBDA_PW85_DOC - 1) <= DOC_RTOL
 
     # 2.1.1 Checking the output
     Q1 = np.zeros((3, 3), dtype=np.float64)
