@@ -27,6 +27,7 @@
 #include <cmath>
 
 #include "common/fp.hpp"
+#include "common/isa.hpp"
 #include "contact/contact.hpp"
 #include "eval/f_dd.hpp"
 
@@ -36,6 +37,9 @@ namespace {
 
 constexpr int kMaxRefine = 10;  // refinement steps per solve (contraction ~cond u each)
 constexpr int kMaxNewton = 6;   // Newton steps on f' = 0
+// Largest |dl| / min(lambda, 1 - lambda) for which the first-order moves
+// along the last Newton step dl are accurate (second-order terms ~ its square).
+constexpr double kFirstOrder = 0x1p-46, kFirstOrderLast = 0x1p-30;
 constexpr int kFields = 29;  // doubles in Derivatives
 
 inline double max_abs(Vec3 const &v) noexcept {
@@ -92,26 +96,29 @@ bool refined_solve(Chol const &c, double lambda, Vec3 const &b, Sym3 const &q1,
 
 // Row i of the symmetric a times x = x_hi + x_lo: compensated dot product
 // (dot3_c, f_dd.hpp) plus a x_lo in double.
-inline dd::DD matvec_dd(Sym3 const &a, int i, Vec3 const &xh, Vec3 const &xl) noexcept {
+template <bool F>
+PW85_ALWAYS_INLINE dd::DD matvec_dd(Sym3 const &a, int i, Vec3 const &xh, Vec3 const &xl) noexcept {
   static constexpr int kIdx[kDim][kDim] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
   int const *k = kIdx[i];
-  dd::DD const c = dot3_c<false>(a[k[0]], a[k[1]], a[k[2]], xh[0], xh[1], xh[2]);
+  dd::DD const c = dot3_c<F>(a[k[0]], a[k[1]], a[k[2]], xh[0], xh[1], xh[2]);
   double const l = a[k[0]] * xl[0] + a[k[1]] * xl[1] + a[k[2]] * xl[2];
   return dd::fast_two_sum(c.hi, c.lo + l);
 }
 
 // Row i of (a + al) times x (double-double), al the low parts of a.
-inline dd::DD matvec_dd2(Sym3 const &a, Sym3 const &al, int i, dd::DD const x[kDim]) noexcept {
+template <bool F>
+PW85_ALWAYS_INLINE dd::DD matvec_dd2(Sym3 const &a, Sym3 const &al, int i, dd::DD const x[kDim]) noexcept {
   static constexpr int kIdx[kDim][kDim] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
   int const *k = kIdx[i];
-  dd::DD const c = dot3_c<false>(a[k[0]], a[k[1]], a[k[2]], x[0].hi, x[1].hi, x[2].hi);
+  dd::DD const c = dot3_c<F>(a[k[0]], a[k[1]], a[k[2]], x[0].hi, x[1].hi, x[2].hi);
   double const l = (a[k[0]] * x[0].lo + a[k[1]] * x[1].lo + a[k[2]] * x[2].lo) +
                    (al[k[0]] * x[0].hi + al[k[1]] * x[1].hi + al[k[2]] * x[2].hi);
   return dd::fast_two_sum(c.hi, c.lo + l);
 }
 
-inline dd::DD dot_dd(dd::DD const a[kDim], dd::DD const b[kDim]) noexcept {
-  dd::DD const c = dot3_c<false>(a[0].hi, a[1].hi, a[2].hi, b[0].hi, b[1].hi, b[2].hi);
+template <bool F>
+PW85_ALWAYS_INLINE dd::DD dot_dd(dd::DD const a[kDim], dd::DD const b[kDim]) noexcept {
+  dd::DD const c = dot3_c<F>(a[0].hi, a[1].hi, a[2].hi, b[0].hi, b[1].hi, b[2].hi);
   double const l = (a[0].hi * b[0].lo + a[1].hi * b[1].lo + a[2].hi * b[2].lo) +
                    (a[0].lo * b[0].hi + a[1].lo * b[1].hi + a[2].lo * b[2].hi);
   return dd::fast_two_sum(c.hi, c.lo + l);
@@ -137,10 +144,11 @@ bool at_lambda(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   return std::isfinite(a.fp);
 }
 
-}  // namespace
-
-Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                           Derivatives &d) noexcept {
+// contact_derivatives with the double-double products of arith/dd.hpp by
+// FMA (F = true) or Dekker's product.
+template <bool F>
+PW85_ALWAYS_INLINE Status derivatives_impl(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                           Derivatives &d) noexcept {
   double const nan = std::nan("");
   Derivatives out;
   double *const all = &out.mu2;
@@ -153,119 +161,143 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   double lambda = res.lambda;
   if (!(lambda > 0.0 && lambda < 1.0)) return kNoConvergence;
   Sym3 const dq = difference(q2, q1);
-  // Newton steps on f'(lambda) = 0 (D7): f' in double-double, the slope
-  // f'' = -2 r.s - 2 (1 - 2 lambda) s.D s + 2 lambda (1 - lambda) (D s).Q^{-1} D s
-  // in double (its error only slows convergence); stop when the step no
-  // longer moves lambda.
+  // Newton steps on f'(lambda) = 0 (D7), f' in double-double, the slope
+  // f'' by (D5) in double-double; usually none is needed: the maximiser is
+  // then DEFAULT's lambda plus the first-order step, below.
   AtLambda a;
-  if (!at_lambda(lambda, r, q1, q2, a)) return kNoConvergence;
-  for (int k = 0; k < kMaxNewton; ++k) {
-    Vec3 s;
-    for (int i = 0; i < kDim; ++i) s[i] = a.s_hi[i] + a.s_lo[i];
-    Vec3 const ds = multiply(dq, s);
-    Vec3 const v = solve(a.c, ds);
-    double const d2f = -2.0 * dot(r, s) - 2.0 * (1.0 - 2.0 * lambda) * dot(s, ds) +
-                       2.0 * lambda * (1.0 - lambda) * dot(ds, v);
-    if (!(d2f < 0.0)) break;
-    double const next = lambda - a.fp / d2f;
-    if (!(next > 0.0 && next < 1.0) || next == lambda) break;
-    AtLambda b;
-    if (!at_lambda(next, r, q1, q2, b)) break;
-    if (!(std::fabs(b.fp) < std::fabs(a.fp))) break;  // no progress: keep the better point
-    lambda = next;
-    a = b;
-  }
-  double nu = 1.0 - lambda;
-  Vec3 s, x0 = a.x0, q2s = a.q2s;
-  for (int i = 0; i < kDim; ++i) s[i] = a.s_hi[i] + a.s_lo[i];
-  // Q^{-1} = X + Xl, column by column (D7): X_ij, i <= j, from column j.
-  Vec3 col[kDim], lo[kDim];
-  for (int j = 0; j < kDim; ++j) {
-    Vec3 e{{0.0, 0.0, 0.0}};
-    e[j] = 1.0;
-    if (!refined_solve(a.c, lambda, e, q1, q2, col[j], lo[j])) return kNoConvergence;
-  }
-  Sym3 qi{{col[0][0], col[1][0], col[2][0], col[1][1], col[2][1], col[2][2]}};
-  Sym3 ql{{lo[0][0], lo[1][0], lo[2][0], lo[1][1], lo[2][1], lo[2][2]}};
-  // Q1 s, Q2 s in double-double from s = s_hi + s_lo (compensated dot
-  // products), and w = (1 - lambda)^2 Q1 s - lambda^2 Q2 s, whose terms
-  // cancel (s.w = f'(lambda) = 0).
-  dd::DD t1[kDim], t2[kDim], wd[kDim];
-  dd::DD const om = dd::two_sum(1.0, -lambda);
-  dd::DD const nu2 = dd::mul<false>(om, om), la2 = dd::two_prod<false>(lambda, lambda);
-  for (int i = 0; i < kDim; ++i) {
-    t1[i] = matvec_dd(q1, i, a.s_hi, a.s_lo);
-    t2[i] = matvec_dd(q2, i, a.s_hi, a.s_lo);
-    wd[i] = dd::sub(dd::mul<false>(nu2, t1[i]), dd::mul<false>(la2, t2[i]));
-  }
-  // (D5): f'' = -2 (Q1 s)^T Q^{-1} (Q2 s) in double-double (the dot product
-  // can cancel: both vectors and Q^{-1} are needed beyond double).
-  dd::DD y[kDim];
-  for (int i = 0; i < kDim; ++i) y[i] = matvec_dd2(qi, ql, i, t2);
-  double const d2f = -2.0 * dd::to_double(dot_dd(t1, y));
-  Vec3 q1s, dsv;
-  for (int i = 0; i < kDim; ++i) {
-    q1s[i] = dd::to_double(t1[i]);
-    dsv[i] = q2s[i] - q1s[i];
-  }
-  Vec3 const v = multiply(qi, dsv);  // -ds/dlambda, for the first-order moves below
-  // (D6): h = 2 Q^{-1} w, the same vector as 2 (1 - 2 lambda) s - 2 lambda (1 - lambda) v
-  // without the cancellation.
-  Vec3 h;
-  for (int i = 0; i < kDim; ++i) h[i] = 2.0 * dd::to_double(matvec_dd2(qi, ql, i, wd));
-  // The last Newton step dl, below half an ulp of lambda, is still large
-  // relative to 1 - lambda when lambda is near 1 (and to lambda near 0): the
-  // maximiser is lambda + dl, with 1 - lambda - dl and lambda + dl rounded
-  // once each, and s, x0 = (1 - lambda) Q1 s, Q2 s, Q^{-1} moved to first
-  // order (s' = -v, x0' = -Q1 s - (1 - lambda) Q1 v, (Q2 s)' = -Q2 v,
-  // (Q^{-1})' = -Q^{-1} (Q2 - Q1) Q^{-1}).
-  double const dl = -a.fp / d2f;
-  if (std::isfinite(dl) && std::fabs(dl) <= 0x1p-30 * std::fmin(lambda, nu)) {
-    Vec3 const q1v = multiply(q1, v), q2v = multiply(q2, v);
-    for (int i = 0; i < kDim; ++i) {
-      s[i] -= v[i] * dl;
-      x0[i] -= (q1s[i] + nu * q1v[i]) * dl;
-      q2s[i] -= q2v[i] * dl;
+  for (int pass = 0;; ++pass) {
+    if (!at_lambda(lambda, r, q1, q2, a)) return kNoConvergence;
+    double nu = 1.0 - lambda;
+    if (pass < kMaxNewton) {
+      // Cheap test first: the Newton step with f'' (D5) in double (one more
+      // solve); far from the maximiser, step without the work below.
+      Vec3 q1s;
+      for (int i = 0; i < kDim; ++i) q1s[i] = a.x0[i] / nu;
+      double const slope = -2.0 * dot(q1s, solve(a.c, a.q2s));
+      double const step = -a.fp / slope;
+      if (slope < 0.0 && !(std::fabs(step) <= 2.0 * kFirstOrder * std::fmin(lambda, nu))) {
+        double const next = lambda + step;
+        if (!(next > 0.0 && next < 1.0)) return kNoConvergence;
+        lambda = next;
+        continue;
+      }
     }
-    Vec3 w[kDim];
-    for (int j = 0; j < kDim; ++j) w[j] = multiply(qi, multiply(dq, col[j]));
-    Sym3 const xdx{{w[0][0], w[1][0], w[2][0], w[1][1], w[2][1], w[2][2]}};
-    for (int k = 0; k < kSym; ++k) qi[k] += (ql[k] - xdx[k] * dl);
-    nu = nu - dl;
-    lambda = lambda + dl;
-  } else {
-    for (int k = 0; k < kSym; ++k) qi[k] += ql[k];
+    Vec3 s, x0 = a.x0, q2s = a.q2s;
+    for (int i = 0; i < kDim; ++i) s[i] = a.s_hi[i] + a.s_lo[i];
+    // Q^{-1} = X + Xl, column by column (D7): X_ij, i <= j, from column j.
+    Vec3 col[kDim], lo[kDim];
+    for (int j = 0; j < kDim; ++j) {
+      Vec3 e{{0.0, 0.0, 0.0}};
+      e[j] = 1.0;
+      if (!refined_solve(a.c, lambda, e, q1, q2, col[j], lo[j])) return kNoConvergence;
+    }
+    Sym3 qi{{col[0][0], col[1][0], col[2][0], col[1][1], col[2][1], col[2][2]}};
+    Sym3 ql{{lo[0][0], lo[1][0], lo[2][0], lo[1][1], lo[2][1], lo[2][2]}};
+    // Q1 s, Q2 s in double-double from s = s_hi + s_lo (compensated dot
+    // products), and w = (1 - lambda)^2 Q1 s - lambda^2 Q2 s, whose terms
+    // cancel (s.w = f'(lambda) = 0).
+    dd::DD t1[kDim], t2[kDim], wd[kDim];
+    dd::DD const om = dd::two_sum(1.0, -lambda);
+    dd::DD const nu2 = dd::mul<F>(om, om), la2 = dd::two_prod<F>(lambda, lambda);
+    for (int i = 0; i < kDim; ++i) {
+      t1[i] = matvec_dd<F>(q1, i, a.s_hi, a.s_lo);
+      t2[i] = matvec_dd<F>(q2, i, a.s_hi, a.s_lo);
+      wd[i] = dd::sub(dd::mul<F>(nu2, t1[i]), dd::mul<F>(la2, t2[i]));
+    }
+    // (D5): f'' = -2 (Q1 s)^T Q^{-1} (Q2 s) in double-double (the dot product
+    // can cancel: both vectors and Q^{-1} are needed beyond double).
+    dd::DD y[kDim];
+    for (int i = 0; i < kDim; ++i) y[i] = matvec_dd2<F>(qi, ql, i, t2);
+    double const d2f = -2.0 * dd::to_double(dot_dd<F>(t1, y));
+    Vec3 q1s, dsv;
+    for (int i = 0; i < kDim; ++i) {
+      q1s[i] = dd::to_double(t1[i]);
+      dsv[i] = q2s[i] - q1s[i];
+    }
+    Vec3 const v = multiply(qi, dsv);  // -ds/dlambda, for the first-order moves below
+    // (D6): h = 2 Q^{-1} w, the same vector as 2 (1 - 2 lambda) s - 2 lambda (1 - lambda) v
+    // without the cancellation.
+    Vec3 h;
+    for (int i = 0; i < kDim; ++i) h[i] = 2.0 * dd::to_double(matvec_dd2<F>(qi, ql, i, wd));
+    // The last Newton step dl, below half an ulp of lambda, is still large
+    // relative to 1 - lambda when lambda is near 1 (and to lambda near 0): the
+    // maximiser is lambda + dl, with 1 - lambda - dl and lambda + dl rounded
+    // once each, and s, x0 = (1 - lambda) Q1 s, Q2 s, Q^{-1} moved to first
+    // order (s' = -v, x0' = -Q1 s - (1 - lambda) Q1 v, (Q2 s)' = -Q2 v,
+    // (Q^{-1})' = -Q^{-1} (Q2 - Q1) Q^{-1}).
+    double const dl = -a.fp / d2f;
+    if (!(d2f < 0.0) || !std::isfinite(dl)) return kNoConvergence;
+    double const rel = std::fabs(dl) / std::fmin(lambda, nu);
+    if (!(rel <= kFirstOrder) && (pass < kMaxNewton || !(rel <= kFirstOrderLast))) {
+      // Too far for the first-order moves: a Newton step, and again; after
+      // kMaxNewton steps (f' at its noise level), the looser bound.
+      double const next = lambda + dl;
+      if (pass == kMaxNewton || !(next > 0.0 && next < 1.0)) return kNoConvergence;
+      lambda = next;
+      continue;
+    }
+    {
+      Vec3 const q1v = multiply(q1, v), q2v = multiply(q2, v);
+      for (int i = 0; i < kDim; ++i) {
+        s[i] -= v[i] * dl;
+        x0[i] -= (q1s[i] + nu * q1v[i]) * dl;
+        q2s[i] -= q2v[i] * dl;
+      }
+      Vec3 w[kDim];
+      for (int j = 0; j < kDim; ++j) w[j] = multiply(qi, multiply(dq, col[j]));
+      Sym3 const xdx{{w[0][0], w[1][0], w[2][0], w[1][1], w[2][1], w[2][2]}};
+      for (int k = 0; k < kSym; ++k) qi[k] += (ql[k] - xdx[k] * dl);
+      nu = nu - dl;
+      lambda = lambda + dl;
+    }
+    double const p = lambda * nu;
+    // (D1), (D3), (D4).
+    Vec3 g, xr;
+    for (int i = 0; i < kDim; ++i) {
+      g[i] = 2.0 * p * s[i];
+      xr[i] = -lambda * q2s[i];  // x0 - r, without the subtraction
+    }
+    Vec3 const c1v = cross(x0, g), c2v = cross(xr, g);
+    // (D2).
+    static constexpr int kI[kSym] = {0, 0, 0, 1, 1, 2}, kJ[kSym] = {0, 1, 2, 1, 2, 2};
+    double const c1 = -p * nu, c2 = -p * lambda;
+    if (!(d2f < 0.0)) return kNoConvergence;
+    out.mu2 = res.mu2;
+    out.lambda = lambda;
+    for (int i = 0; i < kDim; ++i) {
+      out.d_r12[i] = g[i];
+      out.d_theta1[i] = -c1v[i];
+      out.d_theta2[i] = c2v[i];
+    }
+    for (int k = 0; k < kSym; ++k) {
+      double const w = kI[k] == kJ[k] ? 1.0 : 2.0;
+      double const ss = w * s[kI[k]] * s[kJ[k]];
+      out.d_q1[k] = c1 * ss;
+      out.d_q2[k] = c2 * ss;
+      out.hess_r12[k] = 2.0 * p * qi[k] - h[kI[k]] * h[kJ[k]] / d2f;
+    }
+    for (int i = 0; i < kFields; ++i)
+      if (!std::isfinite(all[i])) return kNoConvergence;
+    d = out;
+    return status;
   }
-  double const p = lambda * nu;
-  // (D1), (D3), (D4).
-  Vec3 g, xr;
-  for (int i = 0; i < kDim; ++i) {
-    g[i] = 2.0 * p * s[i];
-    xr[i] = -lambda * q2s[i];  // x0 - r, without the subtraction
-  }
-  Vec3 const c1v = cross(x0, g), c2v = cross(xr, g);
-  // (D2).
-  static constexpr int kI[kSym] = {0, 0, 0, 1, 1, 2}, kJ[kSym] = {0, 1, 2, 1, 2, 2};
-  double const c1 = -p * nu, c2 = -p * lambda;
-  if (!(d2f < 0.0)) return kNoConvergence;
-  out.mu2 = res.mu2;
-  out.lambda = lambda;
-  for (int i = 0; i < kDim; ++i) {
-    out.d_r12[i] = g[i];
-    out.d_theta1[i] = -c1v[i];
-    out.d_theta2[i] = c2v[i];
-  }
-  for (int k = 0; k < kSym; ++k) {
-    double const w = kI[k] == kJ[k] ? 1.0 : 2.0;
-    double const ss = w * s[kI[k]] * s[kJ[k]];
-    out.d_q1[k] = c1 * ss;
-    out.d_q2[k] = c2 * ss;
-    out.hess_r12[k] = 2.0 * p * qi[k] - h[kI[k]] * h[kJ[k]] / d2f;
-  }
-  for (int i = 0; i < kFields; ++i)
-    if (!std::isfinite(all[i])) return kNoConvergence;
-  d = out;
-  return status;
+}
+
+#if PW85_ISA_FMA
+PW85_TARGET_FMA Status derivatives_fma(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                       Derivatives &d) noexcept {
+  return derivatives_impl<true>(r, q1, q2, d);
+}
+#endif
+
+}  // namespace
+
+Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                           Derivatives &d) noexcept {
+#if PW85_ISA_FMA
+  if (isa::has_fma()) return derivatives_fma(r, q1, q2, d);
+#endif
+  return derivatives_impl<isa::kStaticFma>(r, q1, q2, d);
 }
 
 }  // namespace pw85
