@@ -133,10 +133,35 @@ static const double kTolG = 1e-14, kTolT = 1e-13, kTolQ = 1e-14, kTolH = 1e-12;
 
 typedef struct {
   double g, t1, t2, dq, h, lambda;
+  double cg, ch; /* conditioning: exact g, H after a 1-ulp perturbation */
   size_t n;
 } maxima;
 
-static void check_pair(const double r[3], const double q1[6], const double q2[6], maxima *mx) {
+/* The problem's own conditioning: relative change of the exact gradient and
+ * Hessian when every input double moves by one ulp in a random direction
+ * (a reported measurement, docs/derivatives.md; no assertion). */
+static void conditioning(const double r[3], const double q1[6], const double q2[6],
+                         const qderiv *o, GRand *rng, maxima *mx) {
+  double in[15];
+  memcpy(in, r, sizeof(double[3]));
+  memcpy(in + 3, q1, sizeof(double[6]));
+  memcpy(in + 9, q2, sizeof(double[6]));
+  for (int i = 0; i < 15; i++) in[i] = nextafter(in[i], g_rand_boolean(rng) ? INFINITY : -INFINITY);
+  quad R[3], A[6], B[6], e[3];
+  to_quad(in, R, 3);
+  to_quad(in + 3, A, 6);
+  to_quad(in + 9, B, 6);
+  qderiv p;
+  q_derivs(R, A, B, &p);
+  for (int i = 0; i < 3; i++) e[i] = p.g[i] - o->g[i];
+  mx->cg = fmax(mx->cg, q_norm(e, 3) / q_norm(o->g, 3));
+  quad eh[6];
+  for (int k = 0; k < 6; k++) eh[k] = p.h[k] - o->h[k];
+  mx->ch = fmax(mx->ch, sym_norm(eh) / sym_norm(o->h));
+}
+
+static void check_pair(const double r[3], const double q1[6], const double q2[6], maxima *mx,
+                       GRand *rng) {
   pw85_derivatives_t d;
   int st = pw85_contact_derivatives(r, q1, q2, &d);
   g_assert_cmpint(st, ==, PW85_OK);
@@ -161,6 +186,7 @@ static void check_pair(const double r[3], const double q1[6], const double q2[6]
   mx->h = fmax(mx->h, eh);
   mx->lambda = fmax(mx->lambda, el);
   mx->n++;
+  conditioning(r, q1, q2, &o, rng, mx);
   if (!(eg <= kTolG && et1 <= kTolT && et2 <= kTolT && eq <= kTolQ && eh <= kTolH &&
         el <= 4 * DBL_EPSILON && em <= 1e-14))
     g_test_message("pair failing: g %.2e t1 %.2e t2 %.2e q %.2e h %.2e lambda %.2e mu2 %.2e",
@@ -179,17 +205,19 @@ static void check_group(const char *group, size_t stride) {
   if (p == NULL) return;
   maxima mx[4];
   memset(mx, 0, sizeof mx);
+  GRand *rng = g_rand_new_with_seed(11);
   for (size_t i = 0; i < p->n; i += stride) {
     if (p->mu2[i] == 0.0 || p->cls[i] < 0 || p->cls[i] > 3) continue;
-    check_pair(p->r12 + 3 * i, p->q1 + 6 * i, p->q2 + 6 * i, &mx[p->cls[i]]);
+    check_pair(p->r12 + 3 * i, p->q1 + 6 * i, p->q2 + 6 * i, &mx[p->cls[i]], rng);
   }
   for (int c = 0; c < 4; c++) {
     g_test_message("%s class %d (%zu pairs): max rel err g %.2e theta1 %.2e theta2 %.2e "
-                   "q %.2e hess %.2e lambda %.2e",
+                   "q %.2e hess %.2e lambda %.2e; 1-ulp conditioning g %.2e hess %.2e",
                    group, c, mx[c].n, mx[c].g, mx[c].t1, mx[c].t2, mx[c].dq, mx[c].h,
-                   mx[c].lambda);
+                   mx[c].lambda, mx[c].cg, mx[c].ch);
     g_assert_cmpuint(mx[c].n, >=, 100);
   }
+  g_rand_free(rng);
   refdata_pairs_free(p);
 }
 
