@@ -361,6 +361,35 @@ static void test_spheres(void) {
   for (int k = 0; k < 6; k++) g_assert_cmpfloat(fabs(d.hess_r12[k] - hexp[k]), <=, 8 * DBL_EPSILON);
 }
 
+/* mu^2(2^k r, 2^2k Q1, 2^2k Q2) = mu^2(r, Q1, Q2): g scales by 2^-k, d_q and
+ * the Hessian by 2^-2k, the torques not, also where 2^2k Q is far out of the
+ * range of a direct solve. */
+static void test_scaling(void) {
+  double r[3] = {1.2, 0.3, -0.4}, q1[6] = {1, 0.1, 0.2, 2, 0.3, 0.5}, q2[6] = {0.3, 0, 0.05, 0.4, 0, 0.9};
+  pw85_derivatives_t d0, d;
+  g_assert_cmpint(pw85_contact_derivatives(r, q1, q2, &d0), ==, PW85_OK);
+  const int ks[6] = {-500, -200, -40, 40, 200, 500};
+  for (int m = 0; m < 6; m++) {
+    int k = ks[m];
+    double rs[3], a[6], b[6];
+    for (int i = 0; i < 3; i++) rs[i] = ldexp(r[i], k);
+    for (int i = 0; i < 6; i++) {
+      a[i] = ldexp(q1[i], 2 * k);
+      b[i] = ldexp(q2[i], 2 * k);
+    }
+    g_assert_cmpint(pw85_contact_derivatives(rs, a, b, &d), ==, PW85_OK);
+    g_assert_cmpfloat(fabs(d.mu2 - d0.mu2), <=, 4 * DBL_EPSILON * d0.mu2);
+    for (int i = 0; i < 3; i++) {
+      g_assert_cmpfloat(fabs(ldexp(d.d_r12[i], k) - d0.d_r12[i]), <=, 1e-15 * fabs(d0.d_r12[0]) * 4);
+      g_assert_cmpfloat(fabs(d.d_theta1[i] - d0.d_theta1[i]), <=, 1e-15 * fabs(d0.d_theta1[0]) * 4);
+    }
+    for (int i = 0; i < 6; i++) {
+      g_assert_cmpfloat(fabs(ldexp(d.hess_r12[i], 2 * k) - d0.hess_r12[i]), <=, 1e-14 * fabs(d0.hess_r12[0]));
+      g_assert_cmpfloat(fabs(ldexp(d.d_q2[i], 2 * k) - d0.d_q2[i]), <=, 1e-14 * fabs(d0.d_q2[0]));
+    }
+  }
+}
+
 static int all_nan(const pw85_derivatives_t *d) {
   const double *p = &d->mu2;
   for (size_t i = 0; i < sizeof *d / sizeof(double); i++)
@@ -475,6 +504,7 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact_derivatives/reference/contact", test_contact);
   g_test_add_func("/pw85_contact_derivatives/reference/near_contact", test_near_contact);
   g_test_add_func("/pw85_contact_derivatives/spheres", test_spheres);
+  g_test_add_func("/pw85_contact_derivatives/scaling", test_scaling);
   g_test_add_func("/pw85_contact_derivatives/bad-input", test_bad_input);
   g_test_add_func("/pw85_contact_derivatives/batch", test_batch);
   return g_test_run();

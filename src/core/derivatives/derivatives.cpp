@@ -290,14 +290,61 @@ PW85_TARGET_FMA Status derivatives_fma(Vec3 const &r, Sym3 const &q1, Sym3 const
 }
 #endif
 
-}  // namespace
-
-Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                           Derivatives &d) noexcept {
+inline Status derivatives_dispatch(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                   Derivatives &d) noexcept {
 #if PW85_ISA_FMA
   if (isa::has_fma()) return derivatives_fma(r, q1, q2, d);
 #endif
   return derivatives_impl<isa::kStaticFma>(r, q1, q2, d);
+}
+
+}  // namespace
+
+// Magnitudes far from 1: mu^2(2^e r, 2^2e Q1, 2^2e Q2) = mu^2(r, Q1, Q2), so
+// the pair is solved with the larger matrix scaled to [1, 4) by an exact
+// power of two, and the derivatives scaled back: g by 2^e, d_q and the
+// Hessian by 2^2e; mu2, lambda and the torques are invariant.
+Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                           Derivatives &d) noexcept {
+  double mq = 0.0, mr = 0.0;
+  for (int i = 0; i < kSym; ++i) mq = std::fmax(mq, std::fmax(std::fabs(q1[i]), std::fabs(q2[i])));
+  for (int i = 0; i < kDim; ++i) mr = std::fmax(mr, std::fabs(r[i]));
+  if (mq > 0x1p-60 && mq < 0x1p60 && mr > 0x1p-30 && mr < 0x1p30)
+    return derivatives_dispatch(r, q1, q2, d);
+  int ex;
+  std::frexp(mq, &ex);
+  int const e = -(ex / 2);
+  Vec3 rs;
+  Sym3 a, b;
+  for (int i = 0; i < kDim; ++i) rs[i] = std::ldexp(r[i], e);
+  for (int i = 0; i < kSym; ++i) {
+    a[i] = std::ldexp(q1[i], 2 * e);
+    b[i] = std::ldexp(q2[i], 2 * e);
+  }
+  Derivatives s;
+  Status const status = derivatives_dispatch(rs, a, b, s);
+  if (status != kOk && status != kInaccurate) {
+    d = s;  // all NaN
+    return status;
+  }
+  for (int i = 0; i < kDim; ++i) s.d_r12[i] = std::ldexp(s.d_r12[i], e);
+  for (int k = 0; k < kSym; ++k) {
+    s.d_q1[k] = std::ldexp(s.d_q1[k], 2 * e);
+    s.d_q2[k] = std::ldexp(s.d_q2[k], 2 * e);
+    s.hess_r12[k] = std::ldexp(s.hess_r12[k], 2 * e);
+  }
+  double const *all = &s.mu2;
+  for (int i = 0; i < kFields; ++i) {
+    if (!std::isfinite(all[i])) {
+      double const nan = std::nan("");
+      d = Derivatives{nan, nan, {nan, nan, nan}, {nan, nan, nan}, {nan, nan, nan},
+                      {nan, nan, nan, nan, nan, nan}, {nan, nan, nan, nan, nan, nan},
+                      {nan, nan, nan, nan, nan, nan}};
+      return kNoConvergence;  // a derivative out of the range of double
+    }
+  }
+  d = s;
+  return status;
 }
 
 }  // namespace pw85
