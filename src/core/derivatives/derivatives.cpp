@@ -130,16 +130,35 @@ inline Vec3 cross(Vec3 const &a, Vec3 const &b) noexcept {
 
 // Values at one lambda: Cholesky of Q(lambda), s = s_hi + s_lo (refined),
 // f'(lambda) in double-double, x0 = (1 - lambda) Q1 s and Q2 s.
+// When Q(lambda) is too ill-conditioned for the refinement to converge
+// (cond(Q) u > 0.1, beyond the semi-axis class [0.001, 1000]), the solves
+// are in double-double throughout (f_dd.hpp, solve_dd_impl) and dd is set.
 struct AtLambda {
   Chol c;
+  bool dd;
   Vec3 s_hi, s_lo, x0, q2s;
   double fp;
 };
 
-bool at_lambda(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-               AtLambda &a) noexcept {
-  if (!chol(interpolate(q1, q2, lambda), a.c)) return false;
-  if (!refined_solve(a.c, lambda, r, q1, q2, a.s_hi, a.s_lo)) return false;
+// x = Q(lambda)^{-1} b as the double-double x + lo (solve_dd_impl).
+template <bool F>
+PW85_ALWAYS_INLINE bool solve_dd_pair(double lambda, Vec3 const &b, Sym3 const &q1,
+                                      Sym3 const &q2, Vec3 &x, Vec3 &lo) noexcept {
+  dd::DD s[kDim], phi;
+  if (!solve_dd_impl<F>(lambda, b, q1, q2, s, phi)) return false;
+  for (int i = 0; i < kDim; ++i) {
+    x[i] = s[i].hi;
+    lo[i] = s[i].lo;
+  }
+  return std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
+}
+
+template <bool F>
+PW85_ALWAYS_INLINE bool at_lambda(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                  AtLambda &a) noexcept {
+  a.dd = !chol(interpolate(q1, q2, lambda), a.c) ||
+         !refined_solve(a.c, lambda, r, q1, q2, a.s_hi, a.s_lo);
+  if (a.dd && !solve_dd_pair<F>(lambda, r, q1, q2, a.s_hi, a.s_lo)) return false;
   a.fp = refined_point_dd(lambda, q1, q2, a.s_hi, a.s_lo, a.x0, a.q2s);
   return std::isfinite(a.fp);
 }
@@ -166,9 +185,9 @@ PW85_ALWAYS_INLINE Status derivatives_impl(Vec3 const &r, Sym3 const &q1, Sym3 c
   // then DEFAULT's lambda plus the first-order step, below.
   AtLambda a;
   for (int pass = 0;; ++pass) {
-    if (!at_lambda(lambda, r, q1, q2, a)) return kNoConvergence;
+    if (!at_lambda<F>(lambda, r, q1, q2, a)) return kNoConvergence;
     double nu = 1.0 - lambda;
-    if (pass < kMaxNewton) {
+    if (pass < kMaxNewton && !a.dd) {
       // Cheap test first: the Newton step with f'' (D5) in double (one more
       // solve); far from the maximiser, step without the work below.
       Vec3 q1s;
@@ -189,7 +208,9 @@ PW85_ALWAYS_INLINE Status derivatives_impl(Vec3 const &r, Sym3 const &q1, Sym3 c
     for (int j = 0; j < kDim; ++j) {
       Vec3 e{{0.0, 0.0, 0.0}};
       e[j] = 1.0;
-      if (!refined_solve(a.c, lambda, e, q1, q2, col[j], lo[j])) return kNoConvergence;
+      if ((a.dd || !refined_solve(a.c, lambda, e, q1, q2, col[j], lo[j])) &&
+          !solve_dd_pair<F>(lambda, e, q1, q2, col[j], lo[j]))
+        return kNoConvergence;
     }
     Sym3 qi{{col[0][0], col[1][0], col[2][0], col[1][1], col[2][1], col[2][2]}};
     Sym3 ql{{lo[0][0], lo[1][0], lo[2][0], lo[1][1], lo[2][1], lo[2][2]}};
