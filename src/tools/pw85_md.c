@@ -62,7 +62,8 @@ static void update_q(md_t *s, int i) { /* Q = A diag(axes^2) A^T */
     }
 }
 
-/* Forces, torques, potential energy; returns -1 on a library error. */
+/* Forces, torques, potential energy; sets *err on an allocation or library
+ * error. */
 static double forces(md_t *s, int *err) {
   int nc = (int)floor(s->L / kCut), n = s->n;
   double cell = s->L / nc;
@@ -98,9 +99,15 @@ static double forces(md_t *s, int *err) {
             }
             if (r2 >= kCut * kCut) continue;
             if (m == s->cap) {
+              long long *np = realloc(s->pairs, 4 * s->cap * sizeof *s->pairs);
+              if (np) s->pairs = np;
+              pw85_derivatives_t *nd = np ? realloc(s->d, 2 * s->cap * sizeof *s->d) : NULL;
+              if (!nd) {
+                *err = 1;
+                return 0.0;
+              }
+              s->d = nd;
               s->cap *= 2;
-              s->pairs = realloc(s->pairs, 2 * s->cap * sizeof *s->pairs);
-              s->d = realloc(s->d, s->cap * sizeof *s->d);
             }
             s->pairs[2 * m] = i;
             s->pairs[2 * m + 1] = j;
@@ -169,7 +176,8 @@ static void kick(md_t *s, double h) {
 }
 
 /* Runs `steps` steps of dt; drift and RMS fluctuation of E relative to |E(0)|,
- * sampled every `every` steps (E at the sampled times in e_out if not NULL). */
+ * sampled every `every` steps. Returns nonzero on an allocation or library
+ * error. */
 static int run(int n, int steps, double dt, uint64_t seed, int every, int verbose,
                double *drift, double *fluct) {
   md_t s = {0};
@@ -191,9 +199,11 @@ static int run(int n, int steps, double dt, uint64_t seed, int every, int verbos
   int nc = (int)floor(s.L / kCut);
   s.cell_head = malloc(nc * nc * nc * sizeof(int));
   s.cell_next = malloc(n * sizeof(int));
+  int err = !s.c || !s.p || !s.a || !s.pi || !s.q || !s.f || !s.tau || !s.pairs || !s.d ||
+            !s.cell_head || !s.cell_next;
   rng_t g = {seed};
   int side = (int)ceil(cbrt((double)n));
-  for (int i = 0; i < n; i++) {
+  for (int i = 0; i < n && !err; i++) {
     int x = i % side, y = (i / side) % side, z = i / (side * side);
     s.c[3 * i] = (x + 0.5) * s.L / side;
     s.c[3 * i + 1] = (y + 0.5) * s.L / side;
@@ -211,8 +221,7 @@ static int run(int n, int steps, double dt, uint64_t seed, int every, int verbos
     }
     update_q(&s, i);
   }
-  int err = 0;
-  double u = forces(&s, &err), e0 = u + kinetic(&s), sum2 = 0.0, e = e0;
+  double u = err ? 0.0 : forces(&s, &err), e0 = u + kinetic(&s), sum2 = 0.0, e = e0;
   int samples = 0;
   for (int t = 1; t <= steps && !err; t++) {
     kick(&s, 0.5 * dt);
