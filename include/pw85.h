@@ -539,6 +539,55 @@ PW85_API int pw85_scene_contact(long long n, double const *centres, double const
                                 double const box[6], long long m, long long const *pairs,
                                 pw85_contact_t *c, int *status, int nthreads);
 
+/* ---- Derivatives of the contact function ---------------------------------
+ * docs/derivatives.md. */
+
+/* Derivatives of mu^2 for forces and torques (molecular dynamics, DEM). A
+ * plain struct of doubles, mirrored in Fortran by type(pw85_derivatives_t),
+ * bind(c). Symmetric 3x3 quantities are stored as q (upper triangle, row
+ * major: 11, 12, 13, 22, 23, 33). */
+typedef struct pw85_derivatives_t {
+  double mu2;          /* contact function mu^2 (PW85_METHOD_DEFAULT) */
+  double lambda;       /* maximiser of f on [0, 1] */
+  double d_r12[3];     /* gradient d mu^2 / d r12 = 2 lambda (1 - lambda) s,
+                          s = Q(lambda)^{-1} r12 */
+  double d_theta1[3];  /* d mu^2 / d theta1 = -x0 x d_r12: rotation of
+                          ellipsoid 1 about its centre, Q1 -> R Q1 R^T */
+  double d_theta2[3];  /* d mu^2 / d theta2 = (x0 - r12) x d_r12 */
+  double d_q1[6];      /* d mu^2 / d q1[k] for each stored entry: an
+                          off-diagonal q1[k] stands for both Q1_ij and Q1_ji,
+                          so d_q1[k] = 2 x the matrix derivative there */
+  double d_q2[6];      /* d mu^2 / d q2[k], same convention */
+  double hess_r12[6];  /* Hessian d^2 mu^2 / d r12^2 (matrix entries) */
+} pw85_derivatives_t;
+
+/* Derivatives of mu^2 of the pair (r12 = c2 - c1, q1, q2); x0 is the contact
+ * point of pw85_contact() (relative to centre 1). Returns PW85_OK,
+ * PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity, or r12 = 0 where mu^2 is
+ * not differentiable), PW85_ERR_NOT_SPD (q1 or q2 not positive definite),
+ * PW85_ERR_NO_CONVERGENCE (the solve did not converge) or
+ * PW85_ERR_INACCURATE (every field written, but the error estimate of mu2
+ * exceeds PW85_METHOD_DEFAULT's documented accuracy). On the other errors
+ * every field of *d is NaN (when d is not NULL). The last bits may depend on
+ * the CPU (top of this header). */
+PW85_API int pw85_contact_derivatives(double const r12[PW85_DIM], double const q1[PW85_SYM],
+                                      double const q2[PW85_SYM], pw85_derivatives_t *d);
+
+/* d[k] = pw85_contact_derivatives() of pair k of per-pair arrays
+ * (conventions of pw85_contact_pairs). */
+PW85_API int pw85_contact_derivatives_pairs(long long m, double const *r12, double const *q1,
+                                            double const *q2, pw85_derivatives_t *d,
+                                            int *status, int nthreads);
+
+/* d[k] = pw85_contact_derivatives() of pair k = (i, j) of a scene, r12 =
+ * c_j - c_i or its periodic image (conventions of pw85_scene_contact); the
+ * derivatives are with respect to r12 = c_j - c_i, q_i (d_q1, d_theta1) and
+ * q_j (d_q2, d_theta2). */
+PW85_API int pw85_scene_contact_derivatives(long long n, double const *centres,
+                                            double const *q, double const box[6], long long m,
+                                            long long const *pairs, pw85_derivatives_t *d,
+                                            int *status, int nthreads);
+
 PW85_END_DECLS
 
 #endif /* PW85_H */

@@ -27,10 +27,12 @@ program test_fortran
   real(c_double) :: r12s(3, 2), q1s(6, 2), q2s(6, 2), box(6)
   type(pw85_result) :: mresv(2)
   type(pw85_contact_t) :: contacts(2)
+  type(pw85_derivatives_t) :: deriv, derivs(2)
+  real(c_double) :: hr(3)
   character(len=:), allocatable :: version, message_ok, message_spd
 
   write (*, '(a)') 'TAP version 13'
-  write (*, '(a)') '1..20'
+  write (*, '(a)') '1..22'
 
   ! Version: the loaded library and the module constant agree.
   version = pw85_version_string()
@@ -106,6 +108,27 @@ program test_fortran
              abs(norm2(contact%n) - 1.0_c_double) <= 8 * epsilon(1.0_c_double) .and. &
              dot_product(contact%n, r12) > 0.0_c_double, &
              'pw85_contact: tutorial mu^2, lambda, dca = |r12| / mu, depth < 0, unit normal towards 2')
+  ! Derivatives: mu^2 is homogeneous of degree 2 in r12, so
+  ! d_r12 . r12 = 2 mu^2 and hess_r12 r12 = d_r12 (Euler's theorem).
+  status = pw85_contact_derivatives(r12, q1, q2, deriv)
+  hr = [deriv%hess_r12(1) * r12(1) + deriv%hess_r12(2) * r12(2) + deriv%hess_r12(3) * r12(3), &
+        deriv%hess_r12(2) * r12(1) + deriv%hess_r12(4) * r12(2) + deriv%hess_r12(5) * r12(3), &
+        deriv%hess_r12(3) * r12(1) + deriv%hess_r12(5) * r12(2) + deriv%hess_r12(6) * r12(3)]
+  call check(status == PW85_OK .and. abs(deriv%mu2 - MU2_REF) <= RTOL * MU2_REF .and. &
+             abs(dot_product(deriv%d_r12, r12) - 2 * MU2_REF) <= RTOL * MU2_REF .and. &
+             norm2(hr - deriv%d_r12) <= RTOL * norm2(deriv%d_r12), &
+             'pw85_contact_derivatives: tutorial pair, g . r12 = 2 mu^2, H r12 = g')
+  r12s(:, 1) = r12
+  r12s(:, 2) = 0.0_c_double
+  q1s(:, 1) = q1
+  q1s(:, 2) = q1
+  q2s(:, 1) = q2
+  q2s(:, 2) = q2
+  status = pw85_contact_derivatives_pairs(2_c_long_long, r12s, q1s, q2s, derivs, statuses, 1_c_int)
+  call check(status == PW85_ERR_INVALID_ARGUMENT .and. statuses(1) == PW85_OK .and. &
+             statuses(2) == PW85_ERR_INVALID_ARGUMENT .and. &
+             all(derivs(1)%d_r12 == deriv%d_r12) .and. derivs(2)%mu2 /= derivs(2)%mu2, &
+             'pw85_contact_derivatives_pairs: pair 1 as the one-pair call, r12 = 0 fails with NaN')
   centres(:, 1) = x1
   centres(:, 2) = x2
   qs(:, 1) = q1

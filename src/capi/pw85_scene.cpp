@@ -449,6 +449,33 @@ int pw85_scene_contact_function(long long n, double const *centres, double const
                });
 }
 
+int pw85_contact_derivatives_pairs(long long m, double const *r12, double const *q1,
+                                   double const *q2, pw85_derivatives_t *d, int *status,
+                                   int nthreads) {
+  if (m == 0) return PW85_OK;
+  if (!valid_count(m, nthreads) || r12 == nullptr || q1 == nullptr || q2 == nullptr ||
+      d == nullptr)
+    return PW85_ERR_INVALID_ARGUMENT;
+  return run_pairs(m, status, nthreads, 64, [&](long long k) noexcept {
+    return pw85_contact_derivatives(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k, d + k);
+  });
+}
+
+int pw85_scene_contact_derivatives(long long n, double const *centres, double const *q,
+                                   double const box[6], long long m, long long const *pairs,
+                                   pw85_derivatives_t *d, int *status, int nthreads) {
+  if (m == 0) return PW85_OK;
+  Box b;
+  if (!scene_args(n, centres, q, box, m, pairs, d, nthreads, b))
+    return PW85_ERR_INVALID_ARGUMENT;
+  return scene(n, centres, q, b, m, pairs, status, nthreads, 64,
+               [&](long long k, double const *r12, long long i, long long j) noexcept {
+                 if (r12) return pw85_contact_derivatives(r12, q + 6 * i, q + 6 * j, d + k);
+                 fill_nan(&d[k].mu2, 29);
+                 return int{PW85_ERR_INVALID_ARGUMENT};
+               });
+}
+
 int pw85_scene_contact(long long n, double const *centres, double const *q, double const box[6],
                        long long m, long long const *pairs, pw85_contact_t *c, int *status,
                        int nthreads) {

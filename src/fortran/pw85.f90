@@ -57,6 +57,19 @@ module pw85
     real(c_double) :: depth_n  ! depth projected on the normal
   end type pw85_contact_t
 
+  ! Mirror of struct pw85_derivatives_t (docs/derivatives.md): derivatives of
+  ! mu^2; symmetric 3x3 quantities stored as q (11, 12, 13, 22, 23, 33).
+  type, bind(c) :: pw85_derivatives_t
+    real(c_double) :: mu2          ! contact function mu^2
+    real(c_double) :: lambda       ! maximiser of f on [0, 1]
+    real(c_double) :: d_r12(3)     ! d mu^2 / d r12
+    real(c_double) :: d_theta1(3)  ! d mu^2 / d theta1 (rotation of ellipsoid 1)
+    real(c_double) :: d_theta2(3)  ! d mu^2 / d theta2 (rotation of ellipsoid 2)
+    real(c_double) :: d_q1(6)      ! d mu^2 / d q1(k), off-diagonal: 2 x matrix derivative
+    real(c_double) :: d_q2(6)      ! d mu^2 / d q2(k), same convention
+    real(c_double) :: hess_r12(6)  ! d^2 mu^2 / d r12^2 (matrix entries)
+  end type pw85_derivatives_t
+
   ! Method-selecting contact function (docs/methods.md): the
   ! PW85_METHOD_* values and the mirror of struct pw85_result of pw85.h.
   integer(c_int), parameter :: PW85_METHOD_DEFAULT = 0
@@ -185,6 +198,16 @@ module pw85
       integer(c_int) :: status
     end function pw85_contact
 
+    ! int pw85_contact_derivatives(double const r12[3], double const q1[6],
+    !                              double const q2[6], pw85_derivatives_t *d)
+    function pw85_contact_derivatives(r12, q1, q2, d) &
+        bind(C, name="pw85_contact_derivatives") result(status)
+      import :: c_double, c_int, pw85_derivatives_t
+      real(c_double), intent(in) :: r12(3), q1(6), q2(6)
+      type(pw85_derivatives_t), intent(out) :: d
+      integer(c_int) :: status
+    end function pw85_contact_derivatives
+
     ! Batch calls: centres(3, n), q(6, n), pairs(2, m) holding 0-based (C)
     ! indices; status(m) may be omitted (NULL).
     ! int pw85_overlap_batch(long long n, double const *centres,
@@ -275,6 +298,20 @@ module pw85
       integer(c_int) :: res
     end function pw85_contact_pairs
 
+    ! int pw85_contact_derivatives_pairs(long long m, double const *r12,
+    !     double const *q1, double const *q2, pw85_derivatives_t *d,
+    !     int *status, int nthreads)
+    function pw85_contact_derivatives_pairs(m, r12, q1, q2, d, status, nthreads) &
+        bind(C, name="pw85_contact_derivatives_pairs") result(res)
+      import :: c_double, c_int, c_long_long, pw85_derivatives_t
+      integer(c_long_long), value :: m
+      real(c_double), intent(in) :: r12(3, *), q1(6, *), q2(6, *)
+      type(pw85_derivatives_t), intent(out) :: d(*)
+      integer(c_int), intent(out), optional :: status(*)
+      integer(c_int), value :: nthreads
+      integer(c_int) :: res
+    end function pw85_contact_derivatives_pairs
+
     ! Scenes: centres(3, n), q(6, n), pairs(2, m) holding 0-based (C)
     ! indices; box(6) = [Lx, Ly, Lz, xy, xz, yz] (HOOMD/GSD convention) or
     ! omitted (NULL: no periodicity); status(m) may be omitted.
@@ -328,6 +365,23 @@ module pw85
       integer(c_int), value :: nthreads
       integer(c_int) :: res
     end function pw85_scene_contact
+
+    ! int pw85_scene_contact_derivatives(long long n, double const *centres,
+    !     double const *q, double const box[6], long long m,
+    !     long long const *pairs, pw85_derivatives_t *d, int *status,
+    !     int nthreads)
+    function pw85_scene_contact_derivatives(n, centres, q, box, m, pairs, d, status, &
+        nthreads) bind(C, name="pw85_scene_contact_derivatives") result(res)
+      import :: c_double, c_int, c_long_long, pw85_derivatives_t
+      integer(c_long_long), value :: n, m
+      real(c_double), intent(in) :: centres(3, *), q(6, *)
+      real(c_double), intent(in), optional :: box(6)
+      integer(c_long_long), intent(in) :: pairs(2, *)
+      type(pw85_derivatives_t), intent(out) :: d(*)
+      integer(c_int), intent(out), optional :: status(*)
+      integer(c_int), value :: nthreads
+      integer(c_int) :: res
+    end function pw85_scene_contact_derivatives
 
     ! ---- Distance of closest approach (docs/dca.md) ----
     ! int pw85_dca_2d(double const u[2], double const q1[3],

@@ -1,0 +1,105 @@
+// Cost of pw85_contact_derivatives against one PW85_METHOD_DEFAULT
+// pw85_contact_function_method call on the same pairs in the same run
+// (docs/derivatives.md, "Cost"). Pairs of bench_contact's four semi-axis
+// classes (bench_common.hpp: semi-axes log-uniform in [0.5, 2], [0.1, 10],
+// [0.01, 100], [0.001, 1000], random orientations, centre distances from deep
+// overlap to 3.2 times the reach). Each repetition times one pass of each
+// call over the n pairs of a class, alternating the order, in thread CPU
+// time; the table gives ns per call, median over the repetitions, and the
+// ratio of the medians. Also pw85_contact (contact point and normal) for
+// scale.
+//
+//   build/bench/bench_derivatives [--n 20000] [--reps 9] [--seed 20260521]
+#include <pw85.h>
+#include <time.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+#include "bench_common.hpp"
+
+namespace {
+
+double thread_ns() {
+  timespec t;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e9 * t.tv_sec + t.tv_nsec;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  size_t const m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+volatile double sink;
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  int n = 20000, reps = 9;
+  uint64_t seed = 20260521;
+  for (int i = 1; i < argc;) {
+    int const k = bench::common_option(argc, argv, i, n, reps, seed);
+    if (k == 0) {
+      std::fprintf(stderr, "usage: %s [--n N] [--reps R] [--seed S]\n", argv[0]);
+      return 2;
+    }
+    i += k;
+  }
+  double const lo[4] = {0.5, 0.1, 0.01, 0.001}, hi[4] = {2.0, 10.0, 100.0, 1000.0};
+  std::printf("# bench_derivatives: %s, seed %llu, n %d per class, reps %d\n", pw85_version(),
+              (unsigned long long)seed, n, reps);
+  std::printf("# time: ns per call = (thread CPU time of one pass over the n pairs) / n, median over reps\n");
+  std::printf("class,axis_min,axis_max,n,default_ns,derivatives_ns,contact_ns,ratio_derivatives_default,n_status_nonzero\n");
+  bench::Rng g{seed};
+  for (int c = 0; c < 4; ++c) {
+    std::vector<double> r(3 * n), q1(6 * n), q2(6 * n);
+    for (int k = 0; k < n; ++k) {
+      double a1[3], a2[3], m1[3][3], m2[3][3];
+      bench::random_axes(g, lo[c], hi[c], a1, m1);
+      bench::random_axes(g, lo[c], hi[c], a2, m2);
+      bench::q_from_axes(a1, m1, &q1[6 * k]);
+      bench::q_from_axes(a2, m2, &q2[6 * k]);
+      double const reach = *std::max_element(a1, a1 + 3) + *std::max_element(a2, a2 + 3);
+      bench::random_offset(g, reach, bench::kContactSpan, &r[3 * k]);
+    }
+    std::vector<double> t_def, t_der, t_con;
+    int bad = 0;
+    for (int rep = 0; rep < reps; ++rep) {
+      for (int which = 0; which < 3; ++which) {
+        int const w = (which + rep) % 3;
+        double acc = 0.0;
+        double const t0 = thread_ns();
+        for (int k = 0; k < n; ++k) {
+          if (w == 0) {
+            pw85_result res;
+            if (pw85_contact_function_method(&r[3 * k], &q1[6 * k], &q2[6 * k],
+                                             PW85_METHOD_DEFAULT, &res) != PW85_OK && rep == 0)
+              ++bad;
+            acc += res.mu2;
+          } else if (w == 1) {
+            pw85_derivatives_t d;
+            if (pw85_contact_derivatives(&r[3 * k], &q1[6 * k], &q2[6 * k], &d) != PW85_OK &&
+                rep == 0)
+              ++bad;
+            acc += d.d_r12[0];
+          } else {
+            pw85_contact_t ct;
+            pw85_contact(&r[3 * k], &q1[6 * k], &q2[6 * k], &ct);
+            acc += ct.x0[0];
+          }
+        }
+        double const dt = (thread_ns() - t0) / n;
+        sink = acc;
+        (w == 0 ? t_def : w == 1 ? t_der : t_con).push_back(dt);
+      }
+    }
+    double const md = median(t_def), mv = median(t_der), mc = median(t_con);
+    std::printf("%d,%g,%g,%d,%.1f,%.1f,%.1f,%.2f,%d\n", c, lo[c], hi[c], n, md, mv, mc, mv / md,
+                bad);
+    std::fflush(stdout);
+  }
+  return 0;
+}

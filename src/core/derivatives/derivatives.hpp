@@ -1,0 +1,29 @@
+// Derivatives of the contact function mu^2 (docs/derivatives.md, eqs.
+// (E1)-(E7)): gradient with respect to r12, torques of infinitesimal
+// rotations of each ellipsoid about its own centre, derivatives with respect
+// to the stored entries of Q1 and Q2, Hessian with respect to r12.
+#pragma once
+
+#include "common/status.hpp"
+#include "common/sym3.hpp"
+
+namespace pw85 {
+
+struct Derivatives {
+  double mu2;          // contact function mu^2 (PW85_METHOD_DEFAULT)
+  double lambda;       // maximiser of f, refined by Newton steps on f' = 0
+  double d_r12[3];     // d mu^2 / d r12                          (E1)
+  double d_theta1[3];  // d mu^2 / d theta_1 (rotation of 1)      (E4)
+  double d_theta2[3];  // d mu^2 / d theta_2 (rotation of 2)      (E4)
+  double d_q1[6];      // d mu^2 / d q1[k], k over stored entries (E2)
+  double d_q2[6];      // d mu^2 / d q2[k]                        (E2)
+  double hess_r12[6];  // d^2 mu^2 / d r12^2, stored as Q         (E6)
+};
+
+// Preconditions (checked by the C layer): r != 0, finite, q1 and q2 finite
+// and positive definite. Returns kOk or kInaccurate (every field written),
+// or kNoConvergence (every field NaN).
+Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                           Derivatives &d) noexcept;
+
+}  // namespace pw85

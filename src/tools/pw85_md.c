@@ -1,0 +1,279 @@
+/* pw85_md: molecular dynamics of soft rigid ellipsoids, the demonstration of
+ * pw85_scene_contact_derivatives (docs/derivatives.md).
+ *
+ *   pw85_md [--n N] [--steps S] [--dt DT] [--seed SEED] [--check]
+ *
+ * N ellipsoids (semi-axes 1, 0.6, 0.4, mass 1) in a periodic cubic box at
+ * packing fraction 0.2, pair potential U = eps (1 - mu)^2 for mu < 1, zero
+ * beyond (eps = 1). Forces F_j = -dU/dmu^2 d_r12 = -F_i, torques
+ * tau_i = -dU/dmu^2 d_theta1, tau_j = -dU/dmu^2 d_theta2 with
+ * dU/dmu^2 = -eps (1 - mu) / mu. Cell lists (cells of side >= 2, the largest
+ * contact distance), then one pw85_scene_contact_derivatives call per step
+ * over the candidate pairs. Integrator: velocity Verlet for the centres; for
+ * the orientations the symmetric splitting of the free rigid body into
+ * rotations about the body axes x, y, z, y, x (Dullweber, Leimkuhler and
+ * McLachlan, J. Chem. Phys. 107, 5840 (1997)), body angular momenta kicked
+ * by the torques: symplectic and time-reversible.
+ * Prints the total energy every S/10 steps and its relative drift
+ * |E(end) - E(0)| / |E(0)| and fluctuation (RMS of E - E(0)) / |E(0)|.
+ * --check: runs DT for S steps and DT/2 for 2S steps (same time), exit
+ * status 0 when the drift of the first run is <= 1e-5 and the fluctuation
+ * ratio is 4 +- 20 %, 1 otherwise; 2 on bad usage or a library error. */
+#include <math.h>
+#include <pw85.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const double kAxes[3] = {1.0, 0.6, 0.4}, kEps = 1.0, kCut = 2.0;
+
+typedef struct {
+  uint64_t s;
+} rng_t;
+static uint64_t rng_next(rng_t *g) { /* splitmix64 */
+  uint64_t z = (g->s += 0x9E3779B97F4A7C15ULL);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+static double uniform(rng_t *g) { return (double)(rng_next(g) >> 11) * 0x1p-53; }
+static double normal(rng_t *g) {
+  return sqrt(-2.0 * log(uniform(g) + 0x1p-60)) * cos(6.283185307179586 * uniform(g));
+}
+
+typedef struct {
+  int n;
+  double L, inertia[3];
+  double *c, *p, *a, *pi, *q, *f, *tau; /* a: 3x3 body -> lab (row major); pi: body ang. mom. */
+  long long *pairs, cap;
+  pw85_derivatives_t *d;
+  int *cell_head, *cell_next;
+} md_t;
+
+static void update_q(md_t *s, int i) { /* Q = A diag(axes^2) A^T */
+  const double *a = s->a + 9 * i;
+  int k = 0;
+  for (int r = 0; r < 3; r++)
+    for (int c = r; c < 3; c++) {
+      double v = 0.0;
+      for (int m = 0; m < 3; m++) v += a[3 * r + m] * kAxes[m] * kAxes[m] * a[3 * c + m];
+      s->q[6 * i + k++] = v;
+    }
+}
+
+/* Forces, torques, potential energy; sets *err on an allocation or library
+ * error. */
+static double forces(md_t *s, int *err) {
+  int nc = (int)floor(s->L / kCut), n = s->n;
+  double cell = s->L / nc;
+  for (int k = 0; k < nc * nc * nc; k++) s->cell_head[k] = -1;
+  for (int i = 0; i < n; i++) {
+    int idx[3];
+    for (int d = 0; d < 3; d++) {
+      double x = s->c[3 * i + d] - s->L * floor(s->c[3 * i + d] / s->L);
+      idx[d] = (int)(x / cell) % nc;
+    }
+    int k = (idx[0] * nc + idx[1]) * nc + idx[2];
+    s->cell_next[i] = s->cell_head[k];
+    s->cell_head[k] = i;
+  }
+  long long m = 0;
+  for (int i = 0; i < n; i++) {
+    int idx[3];
+    for (int d = 0; d < 3; d++) {
+      double x = s->c[3 * i + d] - s->L * floor(s->c[3 * i + d] / s->L);
+      idx[d] = (int)(x / cell) % nc;
+    }
+    for (int dx = -1; dx <= 1; dx++)
+      for (int dy = -1; dy <= 1; dy++)
+        for (int dz = -1; dz <= 1; dz++) {
+          int k = (((idx[0] + dx + nc) % nc) * nc + (idx[1] + dy + nc) % nc) * nc + (idx[2] + dz + nc) % nc;
+          for (int j = s->cell_head[k]; j >= 0; j = s->cell_next[j]) {
+            if (j <= i) continue;
+            double r2 = 0.0;
+            for (int d = 0; d < 3; d++) {
+              double x = s->c[3 * j + d] - s->c[3 * i + d];
+              x -= s->L * nearbyint(x / s->L);
+              r2 += x * x;
+            }
+            if (r2 >= kCut * kCut) continue;
+            if (m == s->cap) {
+              long long *np = realloc(s->pairs, 4 * s->cap * sizeof *s->pairs);
+              if (np) s->pairs = np;
+              pw85_derivatives_t *nd = np ? realloc(s->d, 2 * s->cap * sizeof *s->d) : NULL;
+              if (!nd) {
+                *err = 1;
+                return 0.0;
+              }
+              s->d = nd;
+              s->cap *= 2;
+            }
+            s->pairs[2 * m] = i;
+            s->pairs[2 * m + 1] = j;
+            m++;
+          }
+        }
+  }
+  double box[6] = {s->L, s->L, s->L, 0, 0, 0}, u = 0.0;
+  memset(s->f, 0, 3 * n * sizeof(double));
+  memset(s->tau, 0, 3 * n * sizeof(double));
+  if (m > 0 && pw85_scene_contact_derivatives(n, s->c, s->q, box, m, s->pairs, s->d, NULL, 0) != PW85_OK) {
+    *err = 1;
+    return 0.0;
+  }
+  for (long long k = 0; k < m; k++) {
+    const pw85_derivatives_t *d = s->d + k;
+    double mu = sqrt(d->mu2);
+    if (mu >= 1.0) continue;
+    long long i = s->pairs[2 * k], j = s->pairs[2 * k + 1];
+    double w = -kEps * (1.0 - mu) / mu; /* dU/dmu^2 */
+    u += kEps * (1.0 - mu) * (1.0 - mu);
+    for (int e = 0; e < 3; e++) {
+      s->f[3 * j + e] -= w * d->d_r12[e];
+      s->f[3 * i + e] += w * d->d_r12[e];
+      s->tau[3 * i + e] -= w * d->d_theta1[e];
+      s->tau[3 * j + e] -= w * d->d_theta2[e];
+    }
+  }
+  return u;
+}
+
+static double kinetic(const md_t *s) {
+  double k = 0.0;
+  for (int i = 0; i < s->n; i++)
+    for (int e = 0; e < 3; e++)
+      k += 0.5 * s->p[3 * i + e] * s->p[3 * i + e] + 0.5 * s->pi[3 * i + e] * s->pi[3 * i + e] / s->inertia[e];
+  return k;
+}
+
+/* Free rotation about body axis k for time h: A <- A R_k(phi), pi <- R_k(-phi) pi,
+ * phi = h pi_k / I_k. */
+static void rotate(md_t *s, int i, int k, double h) {
+  double *a = s->a + 9 * i, *pi = s->pi + 3 * i;
+  double phi = h * pi[k] / s->inertia[k], cs = cos(phi), sn = sin(phi);
+  int u = (k + 1) % 3, v = (k + 2) % 3;
+  for (int r = 0; r < 3; r++) { /* columns u, v of A */
+    double au = a[3 * r + u], av = a[3 * r + v];
+    a[3 * r + u] = cs * au + sn * av;
+    a[3 * r + v] = -sn * au + cs * av;
+  }
+  double pu = pi[u], pv = pi[v];
+  pi[u] = cs * pu + sn * pv;
+  pi[v] = -sn * pu + cs * pv;
+}
+
+static void kick(md_t *s, double h) {
+  for (int i = 0; i < s->n; i++) {
+    const double *a = s->a + 9 * i;
+    for (int e = 0; e < 3; e++) {
+      s->p[3 * i + e] += h * s->f[3 * i + e];
+      double tb = 0.0; /* body-frame torque A^T tau */
+      for (int r = 0; r < 3; r++) tb += a[3 * r + e] * s->tau[3 * i + r];
+      s->pi[3 * i + e] += h * tb;
+    }
+  }
+}
+
+/* Runs `steps` steps of dt; drift and RMS fluctuation of E relative to |E(0)|,
+ * sampled every `every` steps. Returns nonzero on an allocation or library
+ * error. */
+static int run(int n, int steps, double dt, uint64_t seed, int every, int verbose,
+               double *drift, double *fluct) {
+  md_t s = {0};
+  s.n = n;
+  double vol = 4.0 / 3.0 * 3.141592653589793 * kAxes[0] * kAxes[1] * kAxes[2];
+  s.L = cbrt(n * vol / 0.2);
+  for (int e = 0; e < 3; e++)
+    s.inertia[e] = 0.2 * (kAxes[(e + 1) % 3] * kAxes[(e + 1) % 3] + kAxes[(e + 2) % 3] * kAxes[(e + 2) % 3]);
+  s.c = calloc(3 * n, sizeof(double));
+  s.p = calloc(3 * n, sizeof(double));
+  s.a = calloc(9 * n, sizeof(double));
+  s.pi = calloc(3 * n, sizeof(double));
+  s.q = calloc(6 * n, sizeof(double));
+  s.f = calloc(3 * n, sizeof(double));
+  s.tau = calloc(3 * n, sizeof(double));
+  s.cap = 16 * n;
+  s.pairs = malloc(2 * s.cap * sizeof *s.pairs);
+  s.d = malloc(s.cap * sizeof *s.d);
+  int nc = (int)floor(s.L / kCut);
+  s.cell_head = malloc(nc * nc * nc * sizeof(int));
+  s.cell_next = malloc(n * sizeof(int));
+  int err = !s.c || !s.p || !s.a || !s.pi || !s.q || !s.f || !s.tau || !s.pairs || !s.d ||
+            !s.cell_head || !s.cell_next;
+  rng_t g = {seed};
+  int side = (int)ceil(cbrt((double)n));
+  for (int i = 0; i < n && !err; i++) {
+    int x = i % side, y = (i / side) % side, z = i / (side * side);
+    s.c[3 * i] = (x + 0.5) * s.L / side;
+    s.c[3 * i + 1] = (y + 0.5) * s.L / side;
+    s.c[3 * i + 2] = (z + 0.5) * s.L / side;
+    double w = normal(&g), qx = normal(&g), qy = normal(&g), qz = normal(&g);
+    double nq = sqrt(w * w + qx * qx + qy * qy + qz * qz);
+    w /= nq, qx /= nq, qy /= nq, qz /= nq;
+    double m[9] = {1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - w * qz), 2 * (qx * qz + w * qy),
+                   2 * (qx * qy + w * qz), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - w * qx),
+                   2 * (qx * qz - w * qy), 2 * (qy * qz + w * qx), 1 - 2 * (qx * qx + qy * qy)};
+    memcpy(s.a + 9 * i, m, sizeof m);
+    for (int e = 0; e < 3; e++) {
+      s.p[3 * i + e] = sqrt(0.5) * normal(&g);
+      s.pi[3 * i + e] = sqrt(0.5 * s.inertia[e]) * normal(&g);
+    }
+    update_q(&s, i);
+  }
+  double u = err ? 0.0 : forces(&s, &err), e0 = u + kinetic(&s), sum2 = 0.0, e = e0;
+  int samples = 0;
+  for (int t = 1; t <= steps && !err; t++) {
+    kick(&s, 0.5 * dt);
+    for (int i = 0; i < n; i++) {
+      for (int k = 0; k < 3; k++) s.c[3 * i + k] += dt * s.p[3 * i + k];
+      rotate(&s, i, 0, 0.5 * dt);
+      rotate(&s, i, 1, 0.5 * dt);
+      rotate(&s, i, 2, dt);
+      rotate(&s, i, 1, 0.5 * dt);
+      rotate(&s, i, 0, 0.5 * dt);
+      update_q(&s, i);
+    }
+    u = forces(&s, &err);
+    kick(&s, 0.5 * dt);
+    if (t % every == 0) {
+      e = u + kinetic(&s);
+      sum2 += (e - e0) * (e - e0);
+      samples++;
+      if (verbose && t % (steps / 10 > 0 ? steps / 10 : 1) == 0)
+        printf("step %d  t %.4f  E %.12f  U %.6f\n", t, t * dt, e, u);
+    }
+  }
+  *drift = fabs(e - e0) / fabs(e0);
+  *fluct = sqrt(sum2 / (samples > 0 ? samples : 1)) / fabs(e0);
+  free(s.c), free(s.p), free(s.a), free(s.pi), free(s.q), free(s.f), free(s.tau);
+  free(s.pairs), free(s.d), free(s.cell_head), free(s.cell_next);
+  return err;
+}
+
+int main(int argc, char **argv) {
+  int n = 256, steps = 10000, check = 0;
+  double dt = 0.002;
+  uint64_t seed = 1;
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "--check")) check = 1;
+    else if (i + 1 < argc && !strcmp(argv[i], "--n")) n = atoi(argv[++i]);
+    else if (i + 1 < argc && !strcmp(argv[i], "--steps")) steps = atoi(argv[++i]);
+    else if (i + 1 < argc && !strcmp(argv[i], "--dt")) dt = atof(argv[++i]);
+    else if (i + 1 < argc && !strcmp(argv[i], "--seed")) seed = strtoull(argv[++i], NULL, 10);
+    else {
+      fprintf(stderr, "usage: %s [--n N] [--steps S] [--dt DT] [--seed SEED] [--check]\n", argv[0]);
+      return 2;
+    }
+  }
+  if (n < 8 || steps < 10 || !(dt > 0.0)) return 2;
+  double drift, fluct, drift2, fluct2;
+  if (run(n, steps, dt, seed, 10, 1, &drift, &fluct)) return 2;
+  printf("dt %g: relative drift %.3e, relative fluctuation %.3e\n", dt, drift, fluct);
+  if (!check) return 0;
+  if (run(n, 2 * steps, 0.5 * dt, seed, 20, 0, &drift2, &fluct2)) return 2;
+  printf("dt %g: relative drift %.3e, relative fluctuation %.3e\n", 0.5 * dt, drift2, fluct2);
+  double ratio = fluct / fluct2;
+  printf("fluctuation ratio %.3f (expected 4 +- 20 %%)\n", ratio);
+  return drift <= 1e-5 && ratio >= 3.2 && ratio <= 4.8 ? 0 : 1;
+}

@@ -1,0 +1,511 @@
+/* Tests of pw85_contact_derivatives and its batch forms
+ * (docs/derivatives.md). The reference is computed in __float128 from the
+ * double inputs, independently of the library: lambda* maximises f by
+ * bisection on the sign of f' then Newton steps, Q^{-1} by the adjugate, then
+ * the formulas (E1)-(E6) with f'' in its classical form
+ * -2 phi + 2 (1 - 2 lambda) phi' + lambda (1 - lambda) phi'' (not the form
+ * (E5) the library uses). The formulas themselves are checked against
+ * central finite differences of mu^2 computed in __float128. */
+#include <float.h>
+#include <math.h>
+#include <pw85.h>
+#include <string.h>
+
+#include "refdata.h"
+#include "testutil.h"
+
+typedef __float128 quad;
+
+static void q_adj(const quad a[6], quad c[6], quad *det) {
+  c[0] = a[3] * a[5] - a[4] * a[4];
+  c[1] = a[2] * a[4] - a[1] * a[5];
+  c[2] = a[1] * a[4] - a[2] * a[3];
+  c[3] = a[0] * a[5] - a[2] * a[2];
+  c[4] = a[1] * a[2] - a[0] * a[4];
+  c[5] = a[0] * a[3] - a[1] * a[1];
+  *det = a[0] * c[0] + a[1] * c[1] + a[2] * c[2];
+}
+static void q_mul(const quad a[6], const quad v[3], quad o[3]) {
+  o[0] = a[0] * v[0] + a[1] * v[1] + a[2] * v[2];
+  o[1] = a[1] * v[0] + a[3] * v[1] + a[4] * v[2];
+  o[2] = a[2] * v[0] + a[4] * v[1] + a[5] * v[2];
+}
+static quad q_dot(const quad a[3], const quad b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+/* 2-norm, scaled so that tiny or huge entries neither underflow nor overflow. */
+static double q_norm(const quad *a, int n) {
+  quad m = 0, s = 0;
+  for (int i = 0; i < n; i++) m = a[i] > m ? a[i] : (-a[i] > m ? -a[i] : m);
+  if (m == 0) return 0;
+  for (int i = 0; i < n; i++) s += (a[i] / m) * (a[i] / m);
+  return (double)m * sqrt((double)s);
+}
+static void q_cross(const quad a[3], const quad b[3], quad o[3]) {
+  o[0] = a[1] * b[2] - a[2] * b[1];
+  o[1] = a[2] * b[0] - a[0] * b[2];
+  o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* Exact derivatives (quad) of one pair given in quad. */
+typedef struct {
+  quad lambda, mu2, g[3], t1[3], t2[3], dq1[6], dq2[6], h[6], x0[3], xr[3];
+} qderiv;
+
+/* f' and f'' at lam; s = Q^{-1} r, inverse qi. */
+static void q_at(quad lam, const quad R[3], const quad A[6], const quad B[6], quad s[3],
+                 quad qi[6], quad *fp, quad *fpp, quad ds[3], quad v[3]) {
+  quad Q[6], D[6], det, t[3], u[3];
+  for (int i = 0; i < 6; i++) {
+    Q[i] = (1 - lam) * A[i] + lam * B[i];
+    D[i] = B[i] - A[i];
+  }
+  q_adj(Q, qi, &det);
+  for (int i = 0; i < 6; i++) qi[i] /= det;
+  q_mul(qi, R, s);
+  q_mul(A, s, t);
+  q_mul(B, s, u);
+  *fp = (1 - lam) * (1 - lam) * q_dot(s, t) - lam * lam * q_dot(s, u);
+  q_mul(D, s, ds);
+  q_mul(qi, ds, v);
+  *fpp = -2 * q_dot(R, s) - 2 * (1 - 2 * lam) * q_dot(s, ds) + 2 * lam * (1 - lam) * q_dot(ds, v);
+}
+
+static void q_derivs(const quad R[3], const quad A[6], const quad B[6], qderiv *o) {
+  quad s[3], qi[6], fp, fpp, ds[3], v[3], lo = 0, hi = 1, lam;
+  for (int it = 0; it < 60; it++) { /* f concave: f' decreasing */
+    lam = 0.5 * (lo + hi);
+    q_at(lam, R, A, B, s, qi, &fp, &fpp, ds, v);
+    if (fp > 0) lo = lam; else hi = lam;
+  }
+  lam = 0.5 * (lo + hi);
+  for (int it = 0; it < 4; it++) {
+    q_at(lam, R, A, B, s, qi, &fp, &fpp, ds, v);
+    lam -= fp / fpp;
+  }
+  q_at(lam, R, A, B, s, qi, &fp, &fpp, ds, v);
+  quad p = lam * (1 - lam), t[3], u[3], hv[3];
+  o->lambda = lam;
+  o->mu2 = p * q_dot(R, s);
+  q_mul(A, s, t);
+  q_mul(B, s, u);
+  for (int i = 0; i < 3; i++) {
+    o->g[i] = 2 * p * s[i];
+    o->x0[i] = (1 - lam) * t[i];
+    o->xr[i] = o->x0[i] - R[i];
+    hv[i] = 2 * (1 - 2 * lam) * s[i] - 2 * p * v[i];
+  }
+  q_cross(o->x0, o->g, o->t1);
+  for (int i = 0; i < 3; i++) o->t1[i] = -o->t1[i];
+  q_cross(o->xr, o->g, o->t2);
+  static const int I[6] = {0, 0, 0, 1, 1, 2}, J[6] = {0, 1, 2, 1, 2, 2};
+  for (int k = 0; k < 6; k++) {
+    quad w = I[k] == J[k] ? 1 : 2;
+    o->dq1[k] = -w * p * (1 - lam) * s[I[k]] * s[J[k]];
+    o->dq2[k] = -w * p * lam * s[I[k]] * s[J[k]];
+    o->h[k] = 2 * p * qi[k] - hv[I[k]] * hv[J[k]] / fpp;
+  }
+}
+
+static void to_quad(const double *x, quad *y, int n) {
+  for (int i = 0; i < n; i++) y[i] = x[i];
+}
+
+static double rel_q(const double *act, const quad *ref, int n, double scale) {
+  quad e[6];
+  for (int i = 0; i < n; i++) e[i] = (quad)act[i] - ref[i];
+  return q_norm(e, n) / scale;
+}
+/* Frobenius norm of a stored symmetric matrix (off-diagonal entries twice). */
+static double sym_norm(const quad *a) {
+  quad b[9] = {a[0], a[3], a[5], a[1], a[1], a[2], a[2], a[4], a[4]};
+  return q_norm(b, 9);
+}
+static double sym_err(const double *act, const quad *ref) {
+  quad e[6];
+  for (int i = 0; i < 6; i++) e[i] = (quad)act[i] - ref[i];
+  return sym_norm(e) / sym_norm(ref);
+}
+
+/* Bounds of the issue (docs/derivatives.md, "Accuracy"): gradient 1e-14
+ * relative (2-norm); torques 1e-13 relative to |x0| |g| and |x0 - r| |g|;
+ * d_q1, d_q2 1e-14 relative (2-norm of the six stored entries); Hessian 1e-12
+ * relative (Frobenius norm); lambda 4 ulps of 1, mu2 1e-14 relative. */
+static const double kTolG = 1e-14, kTolT = 1e-13, kTolQ = 1e-14, kTolH = 1e-12;
+
+typedef struct {
+  double g, t1, t2, dq, h, lambda;
+  double cg, ch; /* conditioning: exact g, H after a 1-ulp perturbation */
+  size_t n;
+} maxima;
+
+/* The problem's own conditioning: relative change of the exact gradient and
+ * Hessian when every input double moves by one ulp in a random direction
+ * (a reported measurement, docs/derivatives.md; no assertion). */
+static void conditioning(const double r[3], const double q1[6], const double q2[6],
+                         const qderiv *o, GRand *rng, maxima *mx) {
+  double in[15];
+  memcpy(in, r, sizeof(double[3]));
+  memcpy(in + 3, q1, sizeof(double[6]));
+  memcpy(in + 9, q2, sizeof(double[6]));
+  for (int i = 0; i < 15; i++) in[i] = nextafter(in[i], g_rand_boolean(rng) ? INFINITY : -INFINITY);
+  quad R[3], A[6], B[6], e[3];
+  to_quad(in, R, 3);
+  to_quad(in + 3, A, 6);
+  to_quad(in + 9, B, 6);
+  qderiv p;
+  q_derivs(R, A, B, &p);
+  for (int i = 0; i < 3; i++) e[i] = p.g[i] - o->g[i];
+  mx->cg = fmax(mx->cg, q_norm(e, 3) / q_norm(o->g, 3));
+  quad eh[6];
+  for (int k = 0; k < 6; k++) eh[k] = p.h[k] - o->h[k];
+  mx->ch = fmax(mx->ch, sym_norm(eh) / sym_norm(o->h));
+}
+
+static void check_pair(const double r[3], const double q1[6], const double q2[6], maxima *mx,
+                       GRand *rng) {
+  pw85_derivatives_t d;
+  int st = pw85_contact_derivatives(r, q1, q2, &d);
+  g_assert_cmpint(st, ==, PW85_OK);
+  quad R[3], A[6], B[6];
+  to_quad(r, R, 3);
+  to_quad(q1, A, 6);
+  to_quad(q2, B, 6);
+  qderiv o;
+  q_derivs(R, A, B, &o);
+  double ng = q_norm(o.g, 3);
+  double eg = rel_q(d.d_r12, o.g, 3, ng);
+  double et1 = rel_q(d.d_theta1, o.t1, 3, q_norm(o.x0, 3) * ng);
+  double et2 = rel_q(d.d_theta2, o.t2, 3, q_norm(o.xr, 3) * ng);
+  double eq = fmax(rel_q(d.d_q1, o.dq1, 6, q_norm(o.dq1, 6)), rel_q(d.d_q2, o.dq2, 6, q_norm(o.dq2, 6)));
+  double eh = sym_err(d.hess_r12, o.h);
+  double el = fabs((double)((quad)d.lambda - o.lambda));
+  double em = fabs((double)(((quad)d.mu2 - o.mu2) / o.mu2));
+  mx->g = fmax(mx->g, eg);
+  mx->t1 = fmax(mx->t1, et1);
+  mx->t2 = fmax(mx->t2, et2);
+  mx->dq = fmax(mx->dq, eq);
+  mx->h = fmax(mx->h, eh);
+  mx->lambda = fmax(mx->lambda, el);
+  mx->n++;
+  conditioning(r, q1, q2, &o, rng, mx);
+  if (!(eg <= kTolG && et1 <= kTolT && et2 <= kTolT && eq <= kTolQ && eh <= kTolH &&
+        el <= 4 * DBL_EPSILON && em <= 1e-14))
+    g_test_message("pair failing: g %.2e t1 %.2e t2 %.2e q %.2e h %.2e lambda %.2e mu2 %.2e",
+                   eg, et1, et2, eq, eh, el, em);
+  g_assert_cmpfloat(eg, <=, kTolG);
+  g_assert_cmpfloat(et1, <=, kTolT);
+  g_assert_cmpfloat(et2, <=, kTolT);
+  g_assert_cmpfloat(eq, <=, kTolQ);
+  g_assert_cmpfloat(eh, <=, kTolH);
+  g_assert_cmpfloat(el, <=, 4 * DBL_EPSILON);
+  g_assert_cmpfloat(em, <=, 1e-14);
+}
+
+static void check_group(const char *group, size_t stride) {
+  RefPairs *p = refdata_pairs_or_skip(group);
+  if (p == NULL) return;
+  maxima mx[4];
+  memset(mx, 0, sizeof mx);
+  GRand *rng = g_rand_new_with_seed(11);
+  for (size_t i = 0; i < p->n; i += stride) {
+    if (p->mu2[i] == 0.0 || p->cls[i] < 0 || p->cls[i] > 3) continue;
+    check_pair(p->r12 + 3 * i, p->q1 + 6 * i, p->q2 + 6 * i, &mx[p->cls[i]], rng);
+  }
+  for (int c = 0; c < 4; c++) {
+    g_test_message("%s class %d (%zu pairs): max rel err g %.2e theta1 %.2e theta2 %.2e "
+                   "q %.2e hess %.2e lambda %.2e; 1-ulp conditioning g %.2e hess %.2e",
+                   group, c, mx[c].n, mx[c].g, mx[c].t1, mx[c].t2, mx[c].dq, mx[c].h,
+                   mx[c].lambda, mx[c].cg, mx[c].ch);
+    g_assert_cmpuint(mx[c].n, >=, 100);
+  }
+  g_rand_free(rng);
+  refdata_pairs_free(p);
+}
+
+static size_t stride(void) { return g_test_slow() ? 1 : 4; }
+static void test_contact(void) { check_group("/contact", stride()); }
+static void test_near_contact(void) { check_group("/near_contact", stride()); }
+
+/* ---- The formulas against finite differences (all in quad; step 1e-12 relative: truncation ~1e-24, rounding ~1e-22) */
+
+static quad q_mu2(const quad R[3], const quad A[6], const quad B[6]) {
+  qderiv o;
+  q_derivs(R, A, B, &o);
+  return o.mu2;
+}
+
+/* Q -> R Q R^T for the rotation by angle h about axis e_ax (Rodrigues, sin
+ * and cos by their series: |h| <= 1e-6). */
+static void q_rotate(const quad A[6], int ax, quad h, quad out[6]) {
+  quad sn = h - h * h * h / 6 + h * h * h * h * h / 120, cs = 1 - h * h / 2 + h * h * h * h / 24;
+  quad M[3][3], Rm[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, T[3][3];
+  static const int idx[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) M[i][j] = A[idx[i][j]];
+  int a = (ax + 1) % 3, b = (ax + 2) % 3;
+  Rm[a][a] = cs;
+  Rm[b][b] = cs;
+  Rm[a][b] = -sn;
+  Rm[b][a] = sn;
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      T[i][j] = 0;
+      for (int k = 0; k < 3; k++) T[i][j] += Rm[i][k] * M[k][j];
+    }
+  for (int i = 0; i < 3; i++)
+    for (int j = i; j < 3; j++) {
+      quad s = 0;
+      for (int k = 0; k < 3; k++) s += T[i][k] * Rm[j][k];
+      out[idx[i][j]] = s;
+    }
+}
+
+static void test_formulas_fd(void) {
+  GRand *rng = g_rand_new_with_seed(20261125);
+  const double lo[2] = {0.5, 0.1}, hi[2] = {2.0, 10.0};
+  for (int t = 0; t < 40; t++) {
+    int c = t % 2;
+    double rad1[3], rad2[3], ax1[9], ax2[9], q1[6], q2[6], r[3];
+    random_radii(rng, lo[c], hi[c], rad1);
+    random_radii(rng, lo[c], hi[c], rad2);
+    random_axes(rng, ax1);
+    random_axes(rng, ax2);
+    make_q(rad1, ax1, q1);
+    make_q(rad2, ax2, q2);
+    for (int i = 0; i < 3; i++) r[i] = g_rand_double_range(rng, -3 * hi[c], 3 * hi[c]);
+    quad R[3], A[6], B[6];
+    to_quad(r, R, 3);
+    to_quad(q1, A, 6);
+    to_quad(q2, B, 6);
+    qderiv o;
+    q_derivs(R, A, B, &o);
+    quad nr = q_norm(R, 3), h = 1e-12 * nr, fd[6], e[6];
+    /* gradient */
+    for (int i = 0; i < 3; i++) {
+      quad Rp[3], Rm[3];
+      memcpy(Rp, R, sizeof R);
+      memcpy(Rm, R, sizeof R);
+      Rp[i] += h;
+      Rm[i] -= h;
+      fd[i] = (q_mu2(Rp, A, B) - q_mu2(Rm, A, B)) / (2 * h);
+      e[i] = fd[i] - o.g[i];
+    }
+    g_assert_cmpfloat(q_norm(e, 3) / q_norm(o.g, 3), <=, 1e-15);
+    /* stored entries of Q1, Q2 (off-diagonal q[k] moves Q_ij and Q_ji) */
+    for (int m = 0; m < 2; m++) {
+      const quad *Q = m ? B : A;
+      quad hq = 1e-12 * q_norm(Q, 6);
+      for (int k = 0; k < 6; k++) {
+        quad Qp[6], Qm[6];
+        memcpy(Qp, Q, sizeof Qp);
+        memcpy(Qm, Q, sizeof Qm);
+        Qp[k] += hq;
+        Qm[k] -= hq;
+        fd[k] = m ? (q_mu2(R, A, Qp) - q_mu2(R, A, Qm)) / (2 * hq)
+                  : (q_mu2(R, Qp, B) - q_mu2(R, Qm, B)) / (2 * hq);
+        e[k] = fd[k] - (m ? o.dq2[k] : o.dq1[k]);
+      }
+      g_assert_cmpfloat(q_norm(e, 6) / q_norm(m ? o.dq2 : o.dq1, 6), <=, 1e-14);
+    }
+    /* rotations about each centre */
+    for (int m = 0; m < 2; m++) {
+      quad ha = 1e-12;
+      for (int i = 0; i < 3; i++) {
+        quad Qp[6], Qm[6];
+        q_rotate(m ? B : A, i, ha, Qp);
+        q_rotate(m ? B : A, i, -ha, Qm);
+        fd[i] = m ? (q_mu2(R, A, Qp) - q_mu2(R, A, Qm)) / (2 * ha)
+                  : (q_mu2(R, Qp, B) - q_mu2(R, Qm, B)) / (2 * ha);
+        e[i] = fd[i] - (m ? o.t2[i] : o.t1[i]);
+      }
+      quad const *arm = m ? o.xr : o.x0;
+      g_assert_cmpfloat(q_norm(e, 3) / (q_norm(arm, 3) * q_norm(o.g, 3)), <=, 1e-14);
+    }
+    /* Hessian: central differences of the gradient (E1) */
+    quad H[3][3];
+    for (int j = 0; j < 3; j++) {
+      quad Rp[3], Rm[3];
+      qderiv op, om;
+      memcpy(Rp, R, sizeof R);
+      memcpy(Rm, R, sizeof R);
+      Rp[j] += h;
+      Rm[j] -= h;
+      q_derivs(Rp, A, B, &op);
+      q_derivs(Rm, A, B, &om);
+      for (int i = 0; i < 3; i++) H[i][j] = (op.g[i] - om.g[i]) / (2 * h);
+    }
+    quad hs[6] = {H[0][0], H[0][1], H[0][2], H[1][1], H[1][2], H[2][2]};
+    for (int k = 0; k < 6; k++) e[k] = hs[k] - o.h[k];
+    g_assert_cmpfloat(sym_norm(e) / sym_norm(o.h), <=, 1e-14);
+    g_assert_cmpfloat(fabs((double)(H[0][1] - H[1][0])), <=, 1e-14 * sym_norm(o.h));
+  }
+  g_rand_free(rng);
+}
+
+/* ---- Known values, bad input, batch forms ------------------------------- */
+
+/* Spheres of radii a1, a2: mu2 = |r|^2 / (a1 + a2)^2, lambda = a1 / (a1 + a2),
+ * g = 2 r / (a1 + a2)^2, H = 2 I / (a1 + a2)^2, torques 0. */
+static void test_spheres(void) {
+  double q1[6] = {2.25, 0, 0, 2.25, 0, 2.25}, q2[6] = {1, 0, 0, 1, 0, 1}, r[3] = {1.5, 2.0, 0.0};
+  pw85_derivatives_t d;
+  g_assert_cmpint(pw85_contact_derivatives(r, q1, q2, &d), ==, PW85_OK);
+  g_assert_cmpfloat(fabs(d.lambda - 0.6), <=, 2 * DBL_EPSILON);
+  g_assert_cmpfloat(fabs(d.d_r12[0] - 2 * 1.5 / 6.25), <=, 4 * DBL_EPSILON);
+  g_assert_cmpfloat(fabs(d.d_r12[1] - 2 * 2.0 / 6.25), <=, 4 * DBL_EPSILON);
+  g_assert_cmpfloat(fabs(d.d_r12[2]), <=, 4 * DBL_EPSILON);
+  for (int i = 0; i < 3; i++) {
+    g_assert_cmpfloat(fabs(d.d_theta1[i]), <=, 4 * DBL_EPSILON);
+    g_assert_cmpfloat(fabs(d.d_theta2[i]), <=, 4 * DBL_EPSILON);
+  }
+  const double hexp[6] = {2 / 6.25, 0, 0, 2 / 6.25, 0, 2 / 6.25};
+  for (int k = 0; k < 6; k++) g_assert_cmpfloat(fabs(d.hess_r12[k] - hexp[k]), <=, 8 * DBL_EPSILON);
+}
+
+/* mu^2(2^k r, 2^2k Q1, 2^2k Q2) = mu^2(r, Q1, Q2): g scales by 2^-k, d_q and
+ * the Hessian by 2^-2k, the torques not, also where 2^2k Q is far out of the
+ * range of a direct solve. */
+static void test_scaling(void) {
+  double r[3] = {1.2, 0.3, -0.4}, q1[6] = {1, 0.1, 0.2, 2, 0.3, 0.5}, q2[6] = {0.3, 0, 0.05, 0.4, 0, 0.9};
+  pw85_derivatives_t d0, d;
+  g_assert_cmpint(pw85_contact_derivatives(r, q1, q2, &d0), ==, PW85_OK);
+  const int ks[6] = {-500, -200, -40, 40, 200, 500};
+  for (int m = 0; m < 6; m++) {
+    int k = ks[m];
+    double rs[3], a[6], b[6];
+    for (int i = 0; i < 3; i++) rs[i] = ldexp(r[i], k);
+    for (int i = 0; i < 6; i++) {
+      a[i] = ldexp(q1[i], 2 * k);
+      b[i] = ldexp(q2[i], 2 * k);
+    }
+    g_assert_cmpint(pw85_contact_derivatives(rs, a, b, &d), ==, PW85_OK);
+    g_assert_cmpfloat(fabs(d.mu2 - d0.mu2), <=, 4 * DBL_EPSILON * d0.mu2);
+    for (int i = 0; i < 3; i++) {
+      g_assert_cmpfloat(fabs(ldexp(d.d_r12[i], k) - d0.d_r12[i]), <=, 1e-15 * fabs(d0.d_r12[0]) * 4);
+      g_assert_cmpfloat(fabs(d.d_theta1[i] - d0.d_theta1[i]), <=, 1e-15 * fabs(d0.d_theta1[0]) * 4);
+    }
+    for (int i = 0; i < 6; i++) {
+      g_assert_cmpfloat(fabs(ldexp(d.hess_r12[i], 2 * k) - d0.hess_r12[i]), <=, 1e-14 * fabs(d0.hess_r12[0]));
+      g_assert_cmpfloat(fabs(ldexp(d.d_q2[i], 2 * k) - d0.d_q2[i]), <=, 1e-14 * fabs(d0.d_q2[0]));
+    }
+  }
+}
+
+static int all_nan(const pw85_derivatives_t *d) {
+  const double *p = &d->mu2;
+  for (size_t i = 0; i < sizeof *d / sizeof(double); i++)
+    if (!isnan(p[i])) return 0;
+  return 1;
+}
+
+static void test_bad_input(void) {
+  double q[6] = {1, 0, 0, 1, 0, 1}, r[3] = {1, 0, 0}, zero[3] = {0, 0, 0};
+  double notspd[6] = {1, 2, 0, 1, 0, 1}, nanr[3] = {NAN, 0, 0}, infq[6] = {INFINITY, 0, 0, 1, 0, 1};
+  pw85_derivatives_t d;
+  g_assert_cmpint(sizeof d, ==, 29 * sizeof(double));
+  g_assert_cmpint(pw85_contact_derivatives(r, q, q, NULL), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_contact_derivatives(NULL, q, q, &d), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_true(all_nan(&d));
+  g_assert_cmpint(pw85_contact_derivatives(r, NULL, q, &d), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_contact_derivatives(r, q, NULL, &d), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_true(all_nan(&d));
+  g_assert_cmpint(pw85_contact_derivatives(r, q, q, &d), ==, PW85_OK);
+  g_assert_false(all_nan(&d));
+  g_assert_cmpint(pw85_contact_derivatives(zero, q, q, &d), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_true(all_nan(&d));
+  g_assert_cmpint(pw85_contact_derivatives(r, q, q, &d), ==, PW85_OK);
+  g_assert_cmpint(pw85_contact_derivatives(nanr, q, q, &d), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_true(all_nan(&d));
+  g_assert_cmpint(pw85_contact_derivatives(r, infq, q, &d), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_true(all_nan(&d));
+  g_assert_cmpint(pw85_contact_derivatives(r, q, notspd, &d), ==, PW85_ERR_NOT_SPD);
+  g_assert_true(all_nan(&d));
+}
+
+/* Batch forms: bitwise the one-pair call, per-pair statuses, lowest failing
+ * pair's status returned, call errors write nothing. */
+static void test_batch(void) {
+  GRand *rng = g_rand_new_with_seed(7);
+  enum { N = 40, M = 100 };
+  double centres[3 * N], q[6 * N], r12[3 * M], q1[6 * M], q2[6 * M];
+  long long pairs[2 * M];
+  for (int i = 0; i < N; i++) {
+    double rad[3], ax[9];
+    random_radii(rng, 0.1, 1.0, rad);
+    random_axes(rng, ax);
+    make_q(rad, ax, q + 6 * i);
+    for (int d = 0; d < 3; d++) centres[3 * i + d] = g_rand_double_range(rng, 0.0, 10.0);
+  }
+  for (int k = 0; k < M; k++) {
+    int i = g_rand_int_range(rng, 0, N), j = (i + 1 + g_rand_int_range(rng, 0, N - 1)) % N;
+    pairs[2 * k] = i;
+    pairs[2 * k + 1] = j;
+    for (int d = 0; d < 3; d++) r12[3 * k + d] = centres[3 * j + d] - centres[3 * i + d];
+    memcpy(q1 + 6 * k, q + 6 * i, sizeof(double[6]));
+    memcpy(q2 + 6 * k, q + 6 * j, sizeof(double[6]));
+  }
+  q1[6 * 37] = NAN;    /* pair 37 fails in the per-pair form */
+  pairs[2 * 53] = N;   /* pair 53 out of range in the scene form */
+  pw85_derivatives_t d[M], one;
+  int status[M];
+  for (int nt = 0; nt <= 2; nt++) {
+    g_assert_cmpint(pw85_contact_derivatives_pairs(M, r12, q1, q2, d, status, nt), ==,
+                    PW85_ERR_INVALID_ARGUMENT);
+    for (int k = 0; k < M; k++) {
+      int s = pw85_contact_derivatives(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k, &one);
+      g_assert_cmpint(status[k], ==, s);
+      g_assert_cmpmem(&one, sizeof one, d + k, sizeof one);
+    }
+    g_assert_cmpint(status[37], ==, PW85_ERR_INVALID_ARGUMENT);
+    g_assert_cmpint(pw85_scene_contact_derivatives(N, centres, q, NULL, M, pairs, d, status, nt),
+                    ==, PW85_ERR_INVALID_ARGUMENT);
+    for (int k = 0; k < M; k++) {
+      if (k == 53) {
+        g_assert_cmpint(status[k], ==, PW85_ERR_INVALID_ARGUMENT);
+        g_assert_true(all_nan(d + k));
+        continue;
+      }
+      int s = pw85_contact_derivatives(r12 + 3 * k, q + 6 * pairs[2 * k], q + 6 * pairs[2 * k + 1], &one);
+      g_assert_cmpint(status[k], ==, s);
+      g_assert_cmpmem(&one, sizeof one, d + k, sizeof one);
+    }
+  }
+  /* periodic box: r12 is the minimum image */
+  double box[6] = {10, 10, 10, 0, 0, 0};
+  pairs[2 * 53] = 0;
+  g_assert_cmpint(pw85_scene_contact_derivatives(N, centres, q, box, M, pairs, d, status, 2), ==,
+                  PW85_OK);
+  for (int k = 0; k < M; k++) {
+    double r[3];
+    for (int c = 0; c < 3; c++) {
+      r[c] = centres[3 * pairs[2 * k + 1] + c] - centres[3 * pairs[2 * k] + c];
+      r[c] -= 10.0 * nearbyint(r[c] / 10.0);
+    }
+    int s = pw85_contact_derivatives(r, q + 6 * pairs[2 * k], q + 6 * pairs[2 * k + 1], &one);
+    g_assert_cmpint(s, ==, PW85_OK);
+    for (int c = 0; c < 3; c++) g_assert_cmpfloat(fabs(one.d_r12[c] - d[k].d_r12[c]), <=, 1e-12 * fabs(one.d_r12[c]) + 1e-300);
+  }
+  /* call errors: nothing written */
+  memset(status, 0x7f, sizeof status);
+  g_assert_cmpint(pw85_contact_derivatives_pairs(0, NULL, NULL, NULL, NULL, NULL, 0), ==, PW85_OK);
+  g_assert_cmpint(pw85_contact_derivatives_pairs(-1, r12, q1, q2, d, status, 0), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_contact_derivatives_pairs(M, r12, q1, q2, NULL, status, 0), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_contact_derivatives_pairs(M, r12, q1, q2, d, status, -1), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_scene_contact_derivatives(-1, centres, q, NULL, M, pairs, d, status, 0), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_scene_contact_derivatives(N, centres, NULL, NULL, M, pairs, d, status, 0), ==, PW85_ERR_INVALID_ARGUMENT);
+  double badbox[6] = {-1, 10, 10, 0, 0, 0};
+  g_assert_cmpint(pw85_scene_contact_derivatives(N, centres, q, badbox, M, pairs, d, status, 0), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(status[0], ==, 0x7f7f7f7f);
+  g_rand_free(rng);
+}
+
+int main(int argc, char **argv) {
+  g_test_init(&argc, &argv, NULL);
+  g_test_add_func("/pw85_contact_derivatives/formulas-finite-differences", test_formulas_fd);
+  g_test_add_func("/pw85_contact_derivatives/reference/contact", test_contact);
+  g_test_add_func("/pw85_contact_derivatives/reference/near_contact", test_near_contact);
+  g_test_add_func("/pw85_contact_derivatives/spheres", test_spheres);
+  g_test_add_func("/pw85_contact_derivatives/scaling", test_scaling);
+  g_test_add_func("/pw85_contact_derivatives/bad-input", test_bad_input);
+  g_test_add_func("/pw85_contact_derivatives/batch", test_batch);
+  return g_test_run();
+}
