@@ -47,34 +47,19 @@ inline double max_abs(Vec3 const &v) noexcept {
 }
 
 // Cholesky factor with the reciprocals of its diagonal.
-struct Chol {
-  Sym3 l;
-  double i0, i1, i2;
+struct Chol : CholInv {
   double kappa_u;  // (max / min diagonal of L)^2 u: lower estimate of cond(Q) u
 };
 
 inline bool chol(Sym3 const &a, Chol &c) noexcept {
-  if (!cholesky(a, c.l)) return false;
-  c.i0 = 1.0 / c.l[0];
-  c.i1 = 1.0 / c.l[3];
-  c.i2 = 1.0 / c.l[5];
+  if (!chol_inv(a, c)) return false;
   double const dmin = std::fmin(c.l[0], std::fmin(c.l[3], c.l[5]));
   double const dmax = std::fmax(c.l[0], std::fmax(c.l[3], c.l[5]));
   c.kappa_u = (dmax / dmin) * (dmax / dmin) * kU;
   return std::isfinite(c.i0) && std::isfinite(c.i1) && std::isfinite(c.i2) && c.kappa_u < 0.1;
 }
 
-inline Vec3 solve(Chol const &c, Vec3 const &b) noexcept {
-  Sym3 const &l = c.l;
-  double const y0 = b[0] * c.i0;
-  double const y1 = (b[1] - l[1] * y0) * c.i1;
-  double const y2 = (b[2] - l[2] * y0 - l[4] * y1) * c.i2;
-  Vec3 x;
-  x[2] = y2 * c.i2;
-  x[1] = (y1 - l[4] * x[2]) * c.i1;
-  x[0] = (y0 - l[1] * x[1] - l[2] * x[2]) * c.i0;
-  return x;
-}
+inline Vec3 solve(Chol const &c, Vec3 const &b) noexcept { return chol_solve(c, b); }
 
 // x = Q(lambda)^{-1} b by iterative refinement (E7): returns the unevaluated
 // sum x + delta, whose estimated relative error 4 e max(e, kappa_u)

@@ -48,33 +48,6 @@ inline Vec3 abs_multiply(Sym3 const &a, Vec3 const &x) noexcept {
   return multiply(b, y);
 }
 
-// Cholesky factor with the reciprocals of its diagonal, so that the three
-// solves of the fast path multiply instead of divide.
-struct CholInv {
-  Sym3 l;
-  double i0, i1, i2;
-};
-
-inline bool chol_inv(Sym3 const &a, CholInv &c) noexcept {
-  if (!cholesky(a, c.l)) return false;
-  c.i0 = 1.0 / c.l[0];
-  c.i1 = 1.0 / c.l[3];
-  c.i2 = 1.0 / c.l[5];
-  return true;
-}
-
-inline Vec3 chol_solve(CholInv const &c, Vec3 const &b) noexcept {
-  Sym3 const &l = c.l;
-  double const y0 = b[0] * c.i0;
-  double const y1 = (b[1] - l[1] * y0) * c.i1;
-  double const y2 = (b[2] - l[2] * y0 - l[4] * y1) * c.i2;
-  Vec3 x;
-  x[2] = y2 * c.i2;
-  x[1] = (y1 - l[4] * x[2]) * c.i1;
-  x[0] = (y0 - l[1] * x[1] - l[2] * x[2]) * c.i0;
-  return x;
-}
-
 // What the fast path learnt, for the slow path: the Newton-corrected lambda
 // (start), the slope f'' (0 if unknown) and the rates |x0'| / |x0|,
 // |s'| / |s| that turn a step in lambda into relative changes of x0 and n.
