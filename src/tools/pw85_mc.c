@@ -28,21 +28,7 @@
 #include <string.h>
 #include <time.h>
 
-typedef struct {
-  uint64_t s;
-} rng_t;
-
-static uint64_t rng_next(rng_t *g) { /* splitmix64 */
-  uint64_t z = (g->s += 0x9E3779B97F4A7C15ULL);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
-static double rng_uniform(rng_t *g) { return (double)(rng_next(g) >> 11) * 0x1p-53; }
-static double rng_normal(rng_t *g) {
-  double const u1 = rng_uniform(g) + 0x1p-60, u2 = rng_uniform(g);
-  return sqrt(-2.0 * log(u1)) * cos(6.283185307179586 * u2);
-}
+#include "demo_rng.h"
 
 typedef struct {
   int n;

@@ -26,21 +26,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const double kAxes[3] = {1.0, 0.6, 0.4}, kEps = 1.0, kCut = 2.0;
+#include "demo_rng.h"
 
-typedef struct {
-  uint64_t s;
-} rng_t;
-static uint64_t rng_next(rng_t *g) { /* splitmix64 */
-  uint64_t z = (g->s += 0x9E3779B97F4A7C15ULL);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
-static double uniform(rng_t *g) { return (double)(rng_next(g) >> 11) * 0x1p-53; }
-static double normal(rng_t *g) {
-  return sqrt(-2.0 * log(uniform(g) + 0x1p-60)) * cos(6.283185307179586 * uniform(g));
-}
+static const double kAxes[3] = {1.0, 0.6, 0.4}, kEps = 1.0, kCut = 2.0;
 
 typedef struct {
   int n;
@@ -208,7 +196,7 @@ static int run(int n, int steps, double dt, uint64_t seed, int every, int verbos
     s.c[3 * i] = (x + 0.5) * s.L / side;
     s.c[3 * i + 1] = (y + 0.5) * s.L / side;
     s.c[3 * i + 2] = (z + 0.5) * s.L / side;
-    double w = normal(&g), qx = normal(&g), qy = normal(&g), qz = normal(&g);
+    double w = rng_normal(&g), qx = rng_normal(&g), qy = rng_normal(&g), qz = rng_normal(&g);
     double nq = sqrt(w * w + qx * qx + qy * qy + qz * qz);
     w /= nq, qx /= nq, qy /= nq, qz /= nq;
     double m[9] = {1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - w * qz), 2 * (qx * qz + w * qy),
@@ -216,8 +204,8 @@ static int run(int n, int steps, double dt, uint64_t seed, int every, int verbos
                    2 * (qx * qz - w * qy), 2 * (qy * qz + w * qx), 1 - 2 * (qx * qx + qy * qy)};
     memcpy(s.a + 9 * i, m, sizeof m);
     for (int e = 0; e < 3; e++) {
-      s.p[3 * i + e] = sqrt(0.5) * normal(&g);
-      s.pi[3 * i + e] = sqrt(0.5 * s.inertia[e]) * normal(&g);
+      s.p[3 * i + e] = sqrt(0.5) * rng_normal(&g);
+      s.pi[3 * i + e] = sqrt(0.5 * s.inertia[e]) * rng_normal(&g);
     }
     update_q(&s, i);
   }
