@@ -1,18 +1,38 @@
 /* pw85: command-line front end of libpw85.
  *
- *   pw85                       the pw85 tutorial ellipsoids
- *   pw85 --spheroids X1 Y1 Z1 A1 C1 NX1 NY1 NZ1  X2 Y2 Z2 A2 C2 NX2 NY2 NZ2
- *   pw85 --matrices  RX RY RZ  Q1[6]  Q2[6]
+ *   pw85                                     the pw85 1.0 tutorial ellipsoids
+ *   pw85 [--method M] --spheroids X1 Y1 Z1 A1 C1 NX1 NY1 NZ1  X2 ... NZ2
+ *   pw85 [--method M] --matrices  RX RY RZ  Q1[6]  Q2[6]
+ *   pw85 [--method M] --batch [FILE|-]      one pair per line, CSV out
+ *   pw85 --version | --help
  *
- * prints mu^2, lambda and the overlap verdict of the two ellipsoids.
+ * One pair: prints mu^2, lambda and the overlap verdict; the exit status is
+ * the verdict (0 no overlap, 1 overlap), 2 for bad usage, 3 when the library
+ * returns an error status. Batch: one CSV row per pair; 0 when every line
+ * gave PW85_OK, 3 otherwise. docs/usage.md, "The pw85 program".
  */
+#define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "pw85.h"
+
+enum { EXIT_APART = 0, EXIT_OVERLAP = 1, EXIT_USAGE = 2, EXIT_FAILED = 3 };
+
+static const char *const method_names[] = {"DEFAULT", "BRENT", "NEWTON", "RATIONAL", "ZHENG"};
+static int const method_ids[] = {PW85_METHOD_DEFAULT, PW85_METHOD_BRENT, PW85_METHOD_NEWTON,
+                                 PW85_METHOD_RATIONAL, PW85_METHOD_ZHENG};
+enum { N_METHODS = sizeof method_ids / sizeof method_ids[0] };
+
+static const char *method_name(int method) {
+  for (int k = 0; k < N_METHODS; k++)
+    if (method_ids[k] == method) return method_names[k];
+  return "?";
+}
 
 static int parse(int n, char **args, double *values) {
   for (int i = 0; i < n; i++) {
@@ -30,32 +50,212 @@ static int parse(int n, char **args, double *values) {
 static void usage(FILE *out) {
   fprintf(out,
           "usage: pw85\n"
-          "       pw85 --spheroids X1 Y1 Z1 A1 C1 NX1 NY1 NZ1 X2 Y2 Z2 A2 C2 NX2 NY2 NZ2\n"
-          "       pw85 --matrices RX RY RZ Q1_00 Q1_01 Q1_02 Q1_11 Q1_12 Q1_22 "
+          "       pw85 [--method M] --spheroids X1 Y1 Z1 A1 C1 NX1 NY1 NZ1 "
+          "X2 Y2 Z2 A2 C2 NX2 NY2 NZ2\n"
+          "       pw85 [--method M] --matrices RX RY RZ Q1_00 Q1_01 Q1_02 Q1_11 Q1_12 Q1_22 "
           "Q2_00 ... Q2_22\n"
+          "       pw85 [--method M] --batch [FILE|-]\n"
+          "       pw85 --version | --help\n"
           "Prints the contact function mu^2 of two ellipsoids, the maximiser lambda\n"
           "and whether they overlap (mu^2 < 1). Without arguments: the ellipsoids of\n"
-          "the pw85 1.0 tutorial.\n");
+          "the pw85 1.0 tutorial, computed by pw85_contact_function.\n"
+          "--method M   DEFAULT (default), BRENT, NEWTON, RATIONAL or ZHENG (any case)\n"
+          "--batch      reads pairs from FILE (default or '-': standard input), one per\n"
+          "             line: 'RX RY RZ Q1[6] Q2[6]' (15 numbers) or 'C1[3] A1[3] W1 X1 Y1 Z1\n"
+          "             C2[3] A2[3] W2 X2 Y2 Z2' (20 numbers: centre, semi-axes, quaternion);\n"
+          "             '#' starts a comment; writes CSV: line,mu2,lambda,overlap,status\n"
+          "Exit status: one pair: 0 no overlap, 1 overlap, 2 usage error, 3 library error;\n"
+          "--batch: 0 every line computed with PW85_OK, 2 usage error, 3 otherwise.\n");
 }
 
 static void print_matrix(const char *name, const double q[PW85_SYM]) {
   printf("%s = [%g, %g, %g, %g, %g, %g]\n", name, q[0], q[1], q[2], q[3], q[4], q[5]);
 }
 
+/* Quadratic form Q = R diag(radii^2) R^T of an ellipsoid with semi-axes
+ * radii along the body axes, R the rotation of the quaternion
+ * (w, x, y, z) / |(w, x, y, z)| (HOOMD-blue/GSD order):
+ *   R = [[1 - 2(y^2 + z^2), 2(xy - wz), 2(xz + wy)],
+ *        [2(xy + wz), 1 - 2(x^2 + z^2), 2(yz - wx)],
+ *        [2(xz - wy), 2(yz + wx), 1 - 2(x^2 + y^2)]].
+ * The body axes are the columns of R, the rows that pw85_ellipsoid takes.
+ * Returns PW85_ERR_INVALID_ARGUMENT for a zero or non-finite quaternion,
+ * otherwise the status of pw85_ellipsoid. */
+static int ellipsoid_from_quaternion(const double radii[3], const double quat[4], double q[6]) {
+  double const norm = sqrt(quat[0] * quat[0] + quat[1] * quat[1] + quat[2] * quat[2] +
+                           quat[3] * quat[3]);
+  if (!(norm > 0.0) || !isfinite(norm)) return PW85_ERR_INVALID_ARGUMENT;
+  double const w = quat[0] / norm, x = quat[1] / norm, y = quat[2] / norm, z = quat[3] / norm;
+  double const rot[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),
+                         2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
+                         2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)};
+  double axes[9];
+  for (int i = 0; i < 3; i++)
+    for (int k = 0; k < 3; k++) axes[3 * i + k] = rot[3 * k + i];
+  return pw85_ellipsoid(radii, axes, q);
+}
+
+/* Splits a batch line into at most max numbers (whitespace or commas
+ * between them, '#' to the end of the line a comment). Returns the count,
+ * -1 for a token that is not a number, -2 for more than max numbers. */
+static int parse_line(char *line, double *v, int max) {
+  char *hash = strchr(line, '#');
+  if (hash) *hash = '\0';
+  int n = 0;
+  char *p = line;
+  for (;;) {
+    while (*p == ' ' || *p == '\t' || *p == ',' || *p == '\r' || *p == '\n' || *p == '\v' ||
+           *p == '\f')
+      p++;
+    if (*p == '\0') return n;
+    if (n == max) return -2;
+    char *end;
+    errno = 0;
+    v[n] = strtod(p, &end);
+    if (end == p || errno == ERANGE ||
+        !(*end == '\0' || *end == ' ' || *end == '\t' || *end == ',' || *end == '\r' ||
+          *end == '\n' || *end == '\v' || *end == '\f'))
+      return -1;
+    n++;
+    p = end;
+  }
+}
+
+static int run_batch(const char *path, int method) {
+  FILE *in = stdin;
+  if (path && strcmp(path, "-") != 0) {
+    in = fopen(path, "r");
+    if (!in) {
+      fprintf(stderr, "pw85: cannot open '%s': %s\n", path, strerror(errno));
+      return EXIT_USAGE;
+    }
+  }
+  printf("line,mu2,lambda,overlap,status\n");
+  char *line = NULL;
+  size_t cap = 0;
+  ssize_t len;
+  long lineno = 0, failed = 0, pairs = 0;
+  while ((len = getline(&line, &cap, in)) != -1) {
+    lineno++;
+    if ((size_t)len != strlen(line)) {
+      fprintf(stderr, "pw85: line %ld: contains a NUL byte\n", lineno);
+      failed++;
+      continue;
+    }
+    double v[20];
+    int const n = parse_line(line, v, 20);
+    if (n == 0) continue;
+    if (n != 15 && n != 20) {
+      if (n == -1)
+        fprintf(stderr, "pw85: line %ld: not a number\n", lineno);
+      else
+        fprintf(stderr, "pw85: line %ld: expected 15 or 20 numbers, got %s\n", lineno,
+                n == -2 ? "more than 20" : (n < 15 ? "fewer than 15" : "between 16 and 19"));
+      failed++;
+      continue;
+    }
+    double r12[3], q1[6], q2[6];
+    int status = PW85_OK;
+    if (n == 15) {
+      memcpy(r12, v, sizeof r12);
+      memcpy(q1, v + 3, sizeof q1);
+      memcpy(q2, v + 9, sizeof q2);
+    } else {
+      for (int d = 0; d < 3; d++) r12[d] = v[10 + d] - v[d];
+      status = ellipsoid_from_quaternion(v + 3, v + 6, q1);
+      if (status == PW85_OK) status = ellipsoid_from_quaternion(v + 13, v + 16, q2);
+    }
+    pw85_result res = {NAN, NAN, NAN, 0, method};
+    int overlap = -1;
+    if (status == PW85_OK) {
+      status = pw85_contact_function_method(r12, q1, q2, method, &res);
+      overlap = pw85_overlap(r12, q1, q2);
+      if (status == PW85_OK && overlap < 0) status = overlap;
+    }
+    pairs++;
+    if (overlap >= 0)
+      printf("%ld,%.17g,%.17g,%d,%d\n", lineno, res.mu2, res.lambda, overlap, status);
+    else
+      printf("%ld,%.17g,%.17g,,%d\n", lineno, res.mu2, res.lambda, status);
+    if (status != PW85_OK) {
+      fprintf(stderr, "pw85: line %ld: %s\n", lineno, pw85_strerror(status));
+      failed++;
+    }
+  }
+  int const read_error = ferror(in);
+  free(line);
+  if (in != stdin) fclose(in);
+  if (read_error) {
+    fprintf(stderr, "pw85: read error after line %ld\n", lineno);
+    failed++;
+  }
+  if (fflush(stdout) != 0 || ferror(stdout)) {
+    fprintf(stderr, "pw85: write error\n");
+    return EXIT_FAILED;
+  }
+  if (failed) fprintf(stderr, "pw85: %ld of %ld lines failed\n", failed, pairs + failed);
+  return failed ? EXIT_FAILED : EXIT_APART;
+}
+
 int main(int argc, char **argv) {
+  /* Tutorial of pw85 1.0: an oblate and a prolate spheroid. */
+  double v[16] = {-0.5, 0.4, -0.7, 10., 0.1, 0., 0., 1., 0.2, -0.3, 0.4, 0.5, 5., 1., 0., 0.};
   double r12[PW85_DIM], q1[PW85_SYM], q2[PW85_SYM];
-  if (argc == 1 || (argc == 18 && strcmp(argv[1], "--spheroids") == 0)) {
-    /* Tutorial of pw85 1.0: an oblate and a prolate spheroid. */
-    double v[16] = {-0.5, 0.4, -0.7, 10., 0.1, 0., 0., 1.,
-                    0.2, -0.3, 0.4, 0.5, 5., 1., 0., 0.};
-    if (argc == 18 && parse(16, argv + 2, v) != 0) return 2;
+  int method = PW85_METHOD_DEFAULT, have_pair = 0, batch = 0;
+  const char *batch_path = NULL;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+      usage(stdout);
+      return EXIT_APART;
+    } else if (!strcmp(a, "--version")) {
+      printf("pw85 %s\n", pw85_version());
+      return EXIT_APART;
+    } else if (!strcmp(a, "--method")) {
+      if (i + 1 == argc) {
+        fprintf(stderr, "pw85: --method needs a name\n");
+        return EXIT_USAGE;
+      }
+      const char *name = argv[++i];
+      method = -1;
+      for (int k = 0; k < N_METHODS; k++)
+        if (!strcasecmp(name, method_names[k])) method = method_ids[k];
+      if (method < 0) {
+        fprintf(stderr, "pw85: unknown method '%s' (DEFAULT, BRENT, NEWTON, RATIONAL, ZHENG)\n",
+                name);
+        return EXIT_USAGE;
+      }
+    } else if (!strcmp(a, "--batch") && !have_pair && !batch) {
+      batch = 1;
+      if (i + 1 < argc && (strncmp(argv[i + 1], "--", 2) != 0)) batch_path = argv[++i];
+    } else if (!strcmp(a, "--spheroids") && !have_pair && !batch && i + 16 < argc) {
+      if (parse(16, argv + i + 1, v) != 0) return EXIT_USAGE;
+      have_pair = 1;
+      i += 16;
+    } else if (!strcmp(a, "--matrices") && !have_pair && !batch && i + 15 < argc) {
+      double m[15];
+      if (parse(15, argv + i + 1, m) != 0) return EXIT_USAGE;
+      memcpy(r12, m, sizeof r12);
+      memcpy(q1, m + 3, sizeof q1);
+      memcpy(q2, m + 9, sizeof q2);
+      have_pair = 2;
+      i += 15;
+    } else {
+      fprintf(stderr, "pw85: unexpected argument '%s'\n", a);
+      usage(stderr);
+      return EXIT_USAGE;
+    }
+  }
+  if (batch) return run_batch(batch_path, method);
+
+  if (have_pair != 2) {
     double n1[PW85_DIM] = {v[5], v[6], v[7]}, n2[PW85_DIM] = {v[13], v[14], v[15]};
     for (int k = 0; k < 2; k++) {
       double *n = k == 0 ? n1 : n2;
       double const norm = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
       if (!(norm > 0.0)) {
         fprintf(stderr, "pw85: the axis of spheroid %d is zero\n", k + 1);
-        return 2;
+        return EXIT_USAGE;
       }
       for (int i = 0; i < PW85_DIM; i++) n[i] /= norm;
     }
@@ -66,34 +266,35 @@ int main(int argc, char **argv) {
            v[0], v[1], v[2], v[3], v[4], n1[0], n1[1], n1[2]);
     printf("ellipsoid 2: centre (%g, %g, %g), spheroid a = %g, c = %g, axis (%g, %g, %g)\n",
            v[8], v[9], v[10], v[11], v[12], n2[0], n2[1], n2[2]);
-  } else if (argc == 17 && strcmp(argv[1], "--matrices") == 0) {
-    double v[15];
-    if (parse(15, argv + 2, v) != 0) return 2;
-    memcpy(r12, v, sizeof r12);
-    memcpy(q1, v + 3, sizeof q1);
-    memcpy(q2, v + 9, sizeof q2);
-  } else if (argc == 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
-    usage(stdout);
-    return 0;
-  } else {
-    usage(stderr);
-    return 2;
   }
   print_matrix("q1", q1);
   print_matrix("q2", q2);
   printf("r12 = (%g, %g, %g)\n", r12[0], r12[1], r12[2]);
 
-  double out[2];
-  int const status = pw85_contact_function(r12, q1, q2, out);
-  if (status < 0 && status != PW85_ERR_NO_CONVERGENCE) {
+  double out[2] = {NAN, NAN};
+  int status;
+  if (argc == 1) {
+    /* pw85 1.0's call, as in its tutorial. */
+    status = pw85_contact_function(r12, q1, q2, out);
+  } else {
+    pw85_result res;
+    status = pw85_contact_function_method(r12, q1, q2, method, &res);
+    out[0] = res.mu2, out[1] = res.lambda;
+    printf("method = %s\n", method_name(method));
+  }
+  if (status < 0 && isnan(out[0])) {
     fprintf(stderr, "pw85: %s\n", pw85_strerror(status));
-    return 1;
+    return EXIT_FAILED;
   }
   printf("mu^2 = %.17g\n", out[0]);
   printf("lambda = %.17g\n", out[1]);
-  if (status != PW85_OK) printf("warning: %s\n", pw85_strerror(status));
+  if (status != PW85_OK) {
+    printf("warning: %s\n", pw85_strerror(status));
+    fprintf(stderr, "pw85: %s\n", pw85_strerror(status));
+  }
   printf("verdict: %s\n", out[0] < 1.0 ? "overlap (mu^2 < 1)"
                                        : (out[0] == 1.0 ? "external contact (mu^2 = 1)"
                                                         : "no overlap (mu^2 > 1)"));
-  return 0;
+  if (status != PW85_OK) return EXIT_FAILED;
+  return out[0] < 1.0 ? EXIT_OVERLAP : EXIT_APART;
 }
