@@ -97,7 +97,8 @@ static int ellipsoid_from_quaternion(const double radii[3], const double quat[4]
 
 /* Splits a batch line into at most max numbers (whitespace or commas
  * between them, '#' to the end of the line a comment). Returns the count,
- * -1 for a token that is not a number, -2 for more than max numbers. */
+ * -1 for a token that is not a number, -2 for more than max numbers, -3 for
+ * a number beyond the range of double. */
 static int parse_line(char *line, double *v, int max) {
   char *hash = strchr(line, '#');
   if (hash) *hash = '\0';
@@ -112,7 +113,8 @@ static int parse_line(char *line, double *v, int max) {
     char *end;
     errno = 0;
     v[n] = strtod(p, &end);
-    if (end == p || errno == ERANGE ||
+    if (errno == ERANGE && isinf(v[n])) return -3;
+    if (end == p ||
         !(*end == '\0' || *end == ' ' || *end == '\t' || *end == ',' || *end == '\r' ||
           *end == '\n' || *end == '\v' || *end == '\f'))
       return -1;
@@ -148,6 +150,8 @@ static int run_batch(const char *path, int method) {
     if (n != 15 && n != 20) {
       if (n == -1)
         fprintf(stderr, "pw85: line %ld: not a number\n", lineno);
+      else if (n == -3)
+        fprintf(stderr, "pw85: line %ld: number beyond the range of double\n", lineno);
       else
         fprintf(stderr, "pw85: line %ld: expected 15 or 20 numbers, got %s\n", lineno,
                 n == -2 ? "more than 20" : (n < 15 ? "fewer than 15" : "between 16 and 19"));

@@ -1,25 +1,38 @@
 /* pw85_mc: a scene of hard spheroids, the demonstration of the scene API of
- * libpw85 (README "A scene").
+ * libpw85 (README "A scene", docs/usage.md "pw85_mc").
  *
- *   pw85_mc [--n N] [--sweeps S] [--seed SEED] [--aspect C_OVER_A]
- *           [--phi PACKING_FRACTION] [--threads T]
+ *   pw85_mc [--n N] [--sweeps S] [--equil E] [--blocks B] [--seed SEED]
+ *           [--aspect C_OVER_A] [--phi PACKING_FRACTION] [--target ACC]
+ *           [--threads T] [--xyz FILE] [--gsd FILE] [--progress] [--help]
  *
- * N prolate spheroids (equatorial semi-axis a = 0.5, polar semi-axis
- * c = aspect * a) in a periodic cubic box whose side gives the packing
- * fraction phi. Minimum-image convention; cell lists with cells of side
- * >= 2c (so that only the 27 neighbouring cells can hold an overlapping
- * partner; at least 3 cells per side are required). Start: the spheroids
- * are aligned with z on a lattice whose spacing is >= 2c along z and >= 2a
- * along x and y (non-overlapping, checked). Monte Carlo: S sweeps of N
- * trial moves (random particle; translation uniform in [-dr, dr]^3 and a
- * random rotation of its axis); a move is rejected as soon as pw85_overlap
- * reports an overlap with a neighbour. Prints the number of overlap tests
- * per second of the Monte Carlo loop and the acceptance rate, then checks
- * with pw85_contact_function_batch over every neighbour pair that no pair
- * has mu^2 < 1 (and with pw85_overlap_batch that no pair overlaps).
- * Exit status: 0 when no pair overlaps, 1 when one does, 2 on bad usage or
- * a library error. */
+ * N spheroids (equatorial semi-axis a = 0.5, polar semi-axis c = aspect * a:
+ * prolate for aspect > 1, oblate for aspect < 1) in a periodic cubic box
+ * whose side gives the packing fraction phi. Minimum-image convention; cell
+ * lists with cells of side >= 2 max(a, c) (so that only the 27 neighbouring
+ * cells can hold an overlapping partner; at least 3 cells per side are
+ * required). Start: the spheroids are aligned with z on a lattice whose
+ * spacing is >= 2c along z and >= 2a along x and y (non-overlapping). Monte
+ * Carlo: sweeps of N trial moves (random particle, then with probability
+ * 1/2 a translation uniform in [-dr, dr]^3, otherwise a rotation of its
+ * axis u to (u + dtheta g) / |u + dtheta g|, g a standard normal vector;
+ * both proposals are symmetric); a move is rejected as soon as pw85_overlap
+ * reports an overlap with a neighbour. E equilibration sweeps scale dr and
+ * dtheta after each sweep by a power of the ratio of their acceptance to
+ * the target (below); the S production sweeps keep them fixed
+ * (detailed balance) and are reported in B blocks: acceptance and the
+ * nematic order parameter S2 averaged over the sweeps of the block. S2 is
+ * the largest eigenvalue of the order tensor Qt = (1/N) sum (3 u u^T - I) / 2
+ * of the symmetry axes u (the long axis of prolate, the short axis of oblate
+ * spheroids; 0 <= S2 <= 1 since tr Qt = 0; about 1/sqrt(N) for N isotropic
+ * axes). --xyz and --gsd write the configuration at the end of each block
+ * (extended XYZ for OVITO, GSD for HOOMD-blue). Prints the number of overlap
+ * tests per second of the production loop, then checks with
+ * pw85_contact_function_batch over every neighbour pair that no pair has
+ * mu^2 < 1 (and with pw85_overlap_batch that no pair overlaps).
+ * Exit status: 0 when no pair overlaps, 1 when one does, 2 on bad usage, a
+ * library error or a file that cannot be written. */
 #define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <math.h>
 #include <pw85.h>
 #include <stdint.h>
@@ -27,8 +40,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "demo_rng.h"
+#include "gsd_write.h"
 
 typedef struct {
   int n;
@@ -117,55 +132,285 @@ static double now(void) {
   return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-static void usage(const char *prog) {
-  fprintf(stderr,
-          "usage: %s [--n N] [--sweeps S] [--seed SEED] [--aspect C_OVER_A] [--phi PHI] "
-          "[--threads T]\n",
-          prog);
+static void usage(FILE *out) {
+  fprintf(out,
+          "usage: pw85_mc [--n N] [--sweeps S] [--equil E] [--blocks B] [--seed SEED]\n"
+          "               [--aspect C_OVER_A] [--phi PHI] [--target ACC] [--threads T]\n"
+          "               [--xyz FILE] [--gsd FILE] [--progress] [--help]\n"
+          "Monte Carlo of N hard spheroids (semi-axes 0.5, 0.5, 0.5 * C_OVER_A) at packing\n"
+          "fraction PHI: E sweeps tuning the steps to acceptance ACC (default 0.3), then\n"
+          "S sweeps with fixed steps reported in B blocks (acceptance, nematic order S2);\n"
+          "--xyz/--gsd write the configuration after each block (extended XYZ, GSD);\n"
+          "--progress reports on stderr (default when stderr is a terminal).\n"
+          "Defaults: --n 1000 --sweeps 20 --equil 10 --blocks 4 --seed 1 --aspect 3\n"
+          "--phi 0.2 --threads 0 (all). Exit status: 0 no overlapping pair at the end,\n"
+          "1 an overlapping pair, 2 bad usage, library or file error.\n");
+}
+
+static int parse_long(const char *arg, long lo, long hi, long *out) {
+  char *end;
+  errno = 0;
+  long const v = strtol(arg, &end, 10);
+  if (errno != 0 || end == arg || *end != '\0' || v < lo || v > hi) return -1;
+  *out = v;
+  return 0;
+}
+
+static int parse_double(const char *arg, double lo, double hi, double *out) {
+  char *end;
+  errno = 0;
+  double const v = strtod(arg, &end);
+  if (errno != 0 || end == arg || *end != '\0' || !(v >= lo && v <= hi)) return -1;
+  *out = v;
+  return 0;
+}
+
+/* Largest eigenvalue of the symmetric matrix m = (xx, xy, xz, yy, yz, zz)
+ * by the trigonometric solution of its characteristic cubic (O. K. Smith,
+ * Commun. ACM 4(4), 168, 1961): t = tr m / 3, p = sqrt(tr (m - t I)^2 / 6),
+ * B = (m - t I) / p, lambda_max = t + 2 p cos(acos(det B / 2) / 3). */
+static double largest_eigenvalue(const double m[6]) {
+  double const t = (m[0] + m[3] + m[5]) / 3.0;
+  double const d0 = m[0] - t, d1 = m[3] - t, d2 = m[5] - t;
+  double const p2 = d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * (m[1] * m[1] + m[2] * m[2] + m[4] * m[4]);
+  if (!(p2 > 0.0)) return t;
+  double const p = sqrt(p2 / 6.0);
+  double const b0 = d0 / p, b1 = m[1] / p, b2 = m[2] / p, b3 = d1 / p, b4 = m[4] / p,
+               b5 = d2 / p;
+  double r = 0.5 * (b0 * (b3 * b5 - b4 * b4) - b1 * (b1 * b5 - b4 * b2) + b2 * (b1 * b4 - b3 * b2));
+  r = r < -1.0 ? -1.0 : (r > 1.0 ? 1.0 : r);
+  return t + 2.0 * p * cos(acos(r) / 3.0);
+}
+
+/* Nematic order parameter S2: largest eigenvalue of
+ * Qt = (1/N) sum_i (3 u_i u_i^T - I) / 2 over the symmetry axes u_i. */
+static double order_parameter(const scene_t *s) {
+  double m[6] = {0, 0, 0, 0, 0, 0};
+  for (int i = 0; i < s->n; ++i) {
+    const double *u = s->u + 3 * i;
+    m[0] += u[0] * u[0], m[1] += u[0] * u[1], m[2] += u[0] * u[2];
+    m[3] += u[1] * u[1], m[4] += u[1] * u[2], m[5] += u[2] * u[2];
+  }
+  for (int k = 0; k < 6; ++k) m[k] *= 1.5 / s->n;
+  m[0] -= 0.5, m[3] -= 0.5, m[5] -= 0.5;
+  return largest_eigenvalue(m);
+}
+
+/* Unit quaternion (w, x, y, z) of the rotation taking z onto the axis u,
+ * the orientation of a spheroid whose body frame has semi-axes (a, a, c)
+ * along x, y, z: shortest arc q = (1 + z.u, z x u) / |(1 + z.u, z x u)|,
+ * with u replaced by -u (the same spheroid) when u_z < 0, so 1 + z.u >= 1. */
+static void axis_quaternion(const double *u, double q[4]) {
+  double const sgn = u[2] < 0.0 ? -1.0 : 1.0;
+  double const w = 1.0 + sgn * u[2], x = -sgn * u[1], y = sgn * u[0];
+  double const norm = sqrt(w * w + x * x + y * y);
+  q[0] = w / norm, q[1] = x / norm, q[2] = y / norm, q[3] = 0.0;
+}
+
+/* Extended XYZ frame: positions in [0, L)^3, OVITO's orientation order
+ * (x, y, z, w) and aspherical_shape (semi-axes along body x, y, z). */
+static int write_xyz(FILE *f, const scene_t *s, long long sweep, double s2) {
+  fprintf(f,
+          "%d\nLattice=\"%.17g 0 0 0 %.17g 0 0 0 %.17g\" pbc=\"T T T\" "
+          "Properties=species:S:1:pos:R:3:orientation:R:4:aspherical_shape:R:3 "
+          "sweep=%lld S2=%.17g\n",
+          s->n, s->L, s->L, s->L, sweep, s2);
+  for (int i = 0; i < s->n; ++i) {
+    double q[4];
+    axis_quaternion(s->u + 3 * i, q);
+    const double *x = s->x + 3 * i;
+    fprintf(f, "E %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", x[0], x[1],
+            x[2], q[1], q[2], q[3], q[0], s->a, s->a, s->c);
+  }
+  return (fflush(f) != 0 || ferror(f)) ? -1 : 0;
+}
+
+/* GSD frame (HOOMD schema): step, float32 positions in [-L/2, L/2)^3 and
+ * quaternions (w, x, y, z); the first frame also holds the box, N, the type
+ * "E" and its shape {"type": "Ellipsoid", "a", "b", "c"} (semi-axes), which
+ * HOOMD readers carry over to the later frames. */
+static int write_gsd(gsd_writer *w, const scene_t *s, uint64_t sweep, float *buf) {
+  int rc = gsd_chunk(w, "configuration/step", GSD_UINT64, 1, 1, &sweep);
+  float const half = (float)(0.5 * s->L);
+  if (w->frame == 0) {
+    float const box[6] = {(float)s->L, (float)s->L, (float)s->L, 0.0f, 0.0f, 0.0f};
+    uint32_t const n = (uint32_t)s->n;
+    char shape[160];
+    int const len = snprintf(shape, sizeof shape,
+                             "{\"type\": \"Ellipsoid\", \"a\": %.9g, \"b\": %.9g, \"c\": %.9g}",
+                             s->a, s->a, s->c);
+    rc |= gsd_chunk(w, "configuration/box", GSD_FLOAT, 6, 1, box);
+    rc |= gsd_chunk(w, "particles/N", GSD_UINT32, 1, 1, &n);
+    rc |= gsd_chunk(w, "particles/types", GSD_INT8, 1, 2, "E");
+    rc |= gsd_chunk(w, "particles/type_shapes", GSD_INT8, 1, (uint32_t)len + 1, shape);
+    uint32_t *typeid = (uint32_t *)buf; /* all 0 */
+    memset(typeid, 0, (size_t)s->n * sizeof *typeid);
+    rc |= gsd_chunk(w, "particles/typeid", GSD_UINT32, (uint64_t)s->n, 1, typeid);
+  }
+  for (int i = 0; i < s->n; ++i)
+    for (int d = 0; d < 3; ++d) {
+      float p = (float)(s->x[3 * i + d] - 0.5 * s->L);
+      if (p >= half) p = -half;
+      buf[3 * i + d] = p;
+    }
+  rc |= gsd_chunk(w, "particles/position", GSD_FLOAT, (uint64_t)s->n, 3, buf);
+  for (int i = 0; i < s->n; ++i) {
+    double q[4];
+    axis_quaternion(s->u + 3 * i, q);
+    for (int k = 0; k < 4; ++k) buf[4 * i + k] = (float)q[k];
+  }
+  rc |= gsd_chunk(w, "particles/orientation", GSD_FLOAT, (uint64_t)s->n, 4, buf);
+  gsd_end_frame(w);
+  return rc ? -1 : 0;
+}
+
+/* One trial move of particle i: a rotation (rotate = 1) or a translation.
+ * Returns 1 when accepted, 0 when rejected, -1 on a library error. */
+static int trial_move(scene_t *s, rng_t *g, int i, int rotate, double dr, double dtheta,
+                      long long *tests) {
+  double xn[3], un[3], qn[6];
+  memcpy(xn, s->x + 3 * i, sizeof xn);
+  memcpy(un, s->u + 3 * i, sizeof un);
+  memcpy(qn, s->q + 6 * i, sizeof qn);
+  if (rotate) {
+    double norm = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      un[d] += dtheta * rng_normal(g);
+      norm += un[d] * un[d];
+    }
+    norm = sqrt(norm);
+    if (!(norm > 0.0)) return 0;
+    for (int d = 0; d < 3; ++d) un[d] /= norm;
+    pw85_spheroid(s->a, s->c, un, qn);
+  } else {
+    for (int d = 0; d < 3; ++d) xn[d] = wrap(xn[d] + dr * (2.0 * rng_uniform(g) - 1.0), s->L);
+  }
+  int overlap = 0, lib_error = 0;
+  FOR_NEIGHBOURS(s, xn, i, j, {
+    if (!overlap && !lib_error) {
+      double r[3];
+      min_image(s, xn, s->x + 3 * j, r);
+      int const v = pw85_overlap(r, qn, s->q + 6 * j);
+      ++*tests;
+      if (v < 0) {
+        fprintf(stderr, "pw85_mc: pw85_overlap: %s\n", pw85_strerror(v));
+        lib_error = 1;
+      } else if (v == 1) {
+        overlap = 1;
+      }
+    }
+  });
+  if (lib_error) return -1;
+  if (overlap) return 0;
+  int const c_old = s->cell_of[i], c_new = cell_index(s, xn);
+  memcpy(s->x + 3 * i, xn, sizeof xn);
+  memcpy(s->u + 3 * i, un, sizeof un);
+  memcpy(s->q + 6 * i, qn, sizeof qn);
+  if (c_new != c_old) {
+    cell_remove(s, c_old, i);
+    cell_add(s, c_new, i);
+  }
+  return 1;
+}
+
+/* Progress on stderr, at most once per second: sweeps done, acceptance of
+ * the last sweep, sweeps per second, time left at that rate. */
+typedef struct {
+  int on, tty, shown;
+  double t0, last;
+} progress_t;
+
+static void progress(progress_t *p, long long done, long long total, double acceptance) {
+  if (!p->on) return;
+  double const t = now();
+  if (t - p->last < 1.0 && done < total) return;
+  p->last = t;
+  double const rate = done / (t - p->t0 > 0.0 ? t - p->t0 : 1e-9);
+  fprintf(stderr, "%spw85_mc: sweep %lld/%lld, acceptance %.3f, %.3g sweeps/s, %.0f s left%s",
+          p->tty ? "\r" : "", done, total, acceptance, rate,
+          rate > 0.0 ? (double)(total - done) / rate : 0.0, p->tty ? "   " : "\n");
+  p->shown = 1;
 }
 
 int main(int argc, char **argv) {
-  int n = 1000, sweeps = 20, threads = 0;
+  long n = 1000, sweeps = 20, equil = 10, blocks = 4, threads = 0;
   unsigned long long seed = 1;
-  double aspect = 3.0, phi = 0.2;
+  double aspect = 3.0, phi = 0.2, target = 0.3;
+  const char *xyz_path = NULL, *gsd_path = NULL;
+  progress_t prog = {0, isatty(STDERR_FILENO), 0, 0.0, 0.0};
+  prog.on = prog.tty;
   for (int i = 1; i < argc; ++i) {
-    if (i + 1 < argc && !strcmp(argv[i], "--n"))
-      n = atoi(argv[++i]);
-    else if (i + 1 < argc && !strcmp(argv[i], "--sweeps"))
-      sweeps = atoi(argv[++i]);
-    else if (i + 1 < argc && !strcmp(argv[i], "--seed"))
-      seed = strtoull(argv[++i], NULL, 10);
-    else if (i + 1 < argc && !strcmp(argv[i], "--aspect"))
-      aspect = atof(argv[++i]);
-    else if (i + 1 < argc && !strcmp(argv[i], "--phi"))
-      phi = atof(argv[++i]);
-    else if (i + 1 < argc && !strcmp(argv[i], "--threads"))
-      threads = atoi(argv[++i]);
-    else {
-      usage(argv[0]);
+    const char *o = argv[i], *arg = i + 1 < argc ? argv[i + 1] : NULL;
+    int bad = 0, takes = 1;
+    if (!strcmp(o, "--help") || !strcmp(o, "-h")) {
+      usage(stdout);
+      return 0;
+    } else if (!strcmp(o, "--progress")) {
+      prog.on = 1, takes = 0;
+    } else if (!arg) {
+      bad = 1;
+    } else if (!strcmp(o, "--n")) {
+      bad = parse_long(arg, 2, 100000000, &n);
+    } else if (!strcmp(o, "--sweeps")) {
+      bad = parse_long(arg, 0, 1000000000, &sweeps);
+    } else if (!strcmp(o, "--equil")) {
+      bad = parse_long(arg, 0, 1000000000, &equil);
+    } else if (!strcmp(o, "--blocks")) {
+      bad = parse_long(arg, 1, 1000000, &blocks);
+    } else if (!strcmp(o, "--threads")) {
+      bad = parse_long(arg, 0, 4096, &threads);
+    } else if (!strcmp(o, "--seed")) {
+      char *end;
+      errno = 0;
+      seed = strtoull(arg, &end, 10);
+      bad = errno != 0 || end == arg || *end != '\0' || arg[0] == '-';
+    } else if (!strcmp(o, "--aspect")) {
+      bad = parse_double(arg, 1e-3, 1e3, &aspect);
+    } else if (!strcmp(o, "--phi")) {
+      bad = parse_double(arg, 1e-6, 0.5, &phi) || phi == 0.5;
+    } else if (!strcmp(o, "--target")) {
+      bad = parse_double(arg, 0.01, 0.99, &target);
+    } else if (!strcmp(o, "--xyz")) {
+      xyz_path = arg;
+    } else if (!strcmp(o, "--gsd")) {
+      gsd_path = arg;
+    } else {
+      fprintf(stderr, "pw85_mc: unknown option '%s'\n", o);
+      usage(stderr);
       return 2;
     }
+    if (bad) {
+      fprintf(stderr, "pw85_mc: bad or missing value for %s\n", o);
+      usage(stderr);
+      return 2;
+    }
+    i += takes;
   }
-  if (n < 2 || sweeps < 0 || threads < 0 || !(aspect >= 1.0) || !(phi > 0.0 && phi < 0.5)) {
-    usage(argv[0]);
-    return 2;
-  }
+  if (blocks > sweeps) blocks = sweeps;
   scene_t s;
   memset(&s, 0, sizeof s);
-  s.n = n;
+  s.n = (int)n;
   s.a = 0.5;
   s.c = aspect * s.a;
+  double const rmax = s.c > s.a ? s.c : s.a;
   double const volume = 4.0 / 3.0 * 3.141592653589793 * s.a * s.a * s.c;
   s.L = cbrt(n * volume / phi);
-  s.nc = (int)floor(s.L / (2.0 * s.c));
-  if (s.nc < 3) {
-    fprintf(stderr, "pw85_mc: box too small for cell lists (L = %g < 6c); increase --n\n", s.L);
+  double const ncd = floor(s.L / (2.0 * rmax));
+  if (ncd < 3) {
+    fprintf(stderr,
+            "pw85_mc: box too small for cell lists (L = %g < 6 max(a, c)); increase --n\n", s.L);
     return 2;
   }
+  if (ncd > 1000) {
+    fprintf(stderr, "pw85_mc: box too large for cell lists (%g cells per side)\n", ncd);
+    return 2;
+  }
+  s.nc = (int)ncd;
   s.cell = s.L / s.nc;
   /* Lattice: nz layers of spacing >= 2c along z, nxy x nxy sites per layer
    * of spacing >= 2a. */
-  int const nz = (int)floor(s.L / (2.0 * s.c));
+  double const nzd = floor(s.L / (2.0 * s.c));
+  int const nz = nzd > n ? (int)n : (int)nzd;
   int const nxy = (int)ceil(sqrt((double)n / nz));
   if (s.L / nxy < 2.0 * s.a) {
     fprintf(stderr, "pw85_mc: packing fraction too high for the initial lattice\n");
@@ -175,11 +420,12 @@ int main(int argc, char **argv) {
   s.u = malloc(3 * (size_t)n * sizeof(double));
   s.q = malloc(6 * (size_t)n * sizeof(double));
   s.cell_of = malloc((size_t)n * sizeof(int));
+  float *fbuf = malloc(4 * (size_t)n * sizeof(float));
   int const ncells = s.nc * s.nc * s.nc;
   s.members = calloc((size_t)ncells, sizeof(int *));
   s.count = calloc((size_t)ncells, sizeof(int));
   s.cap = calloc((size_t)ncells, sizeof(int));
-  if (!s.x || !s.u || !s.q || !s.cell_of || !s.members || !s.count || !s.cap) return 2;
+  if (!s.x || !s.u || !s.q || !s.cell_of || !fbuf || !s.members || !s.count || !s.cap) return 2;
   for (int i = 0; i < n; ++i) {
     int const iz = i / (nxy * nxy), iy = (i / nxy) % nxy, ix = i % nxy;
     s.x[3 * i] = (ix + 0.5) * s.L / nxy;
@@ -189,60 +435,111 @@ int main(int argc, char **argv) {
     pw85_spheroid(s.a, s.c, s.u + 3 * i, s.q + 6 * i);
     cell_add(&s, cell_index(&s, s.x + 3 * i), i);
   }
-  printf("pw85_mc: %d prolate spheroids (a = %g, c = %g), packing fraction %g, box %.4g, "
+  printf("pw85_mc: %ld %s spheroids (a = %g, c = %g), packing fraction %g, box %.4g, "
          "%d^3 cells, seed %llu\n",
-         n, s.a, s.c, phi, s.L, s.nc, seed);
+         n, s.c > s.a ? "prolate" : (s.c < s.a ? "oblate" : "spherical"), s.a, s.c, phi, s.L,
+         s.nc, seed);
+
+  FILE *xyz = NULL;
+  gsd_writer gsd;
+  int have_gsd = 0, file_error = 0;
+  if (xyz_path && !(xyz = fopen(xyz_path, "w"))) {
+    fprintf(stderr, "pw85_mc: cannot write '%s': %s\n", xyz_path, strerror(errno));
+    return 2;
+  }
+  if (gsd_path) {
+    char app[64];
+    snprintf(app, sizeof app, "pw85_mc %s", pw85_version());
+    if (gsd_open(&gsd, gsd_path, app) != 0) {
+      fprintf(stderr, "pw85_mc: cannot write '%s': %s\n", gsd_path, strerror(errno));
+      return 2;
+    }
+    have_gsd = 1;
+  }
 
   rng_t g = {seed};
-  double const dr = 0.4 * s.a, dtheta = 0.4;
-  long long tests = 0, accepted = 0, moves = (long long)sweeps * n;
-  int lib_error = 0;
-  double const t0 = now();
-  for (long long mv = 0; mv < moves && !lib_error; ++mv) {
-    int const i = (int)(rng_next(&g) % (uint64_t)n);
-    double xn[3], un[3], qn[6];
-    for (int d = 0; d < 3; ++d) xn[d] = wrap(s.x[3 * i + d] + dr * (2.0 * rng_uniform(&g) - 1.0), s.L);
-    double norm = 0.0;
-    for (int d = 0; d < 3; ++d) {
-      un[d] = s.u[3 * i + d] + dtheta * rng_normal(&g);
-      norm += un[d] * un[d];
-    }
-    norm = sqrt(norm);
-    for (int d = 0; d < 3; ++d) un[d] /= norm;
-    pw85_spheroid(s.a, s.c, un, qn);
-    int overlap = 0;
-    FOR_NEIGHBOURS(&s, xn, i, j, {
-      if (!overlap && !lib_error) {
-        double r[3];
-        min_image(&s, xn, s.x + 3 * j, r);
-        int const v = pw85_overlap(r, qn, s.q + 6 * j);
-        ++tests;
-        if (v < 0) {
-          fprintf(stderr, "pw85_mc: pw85_overlap: %s\n", pw85_strerror(v));
-          lib_error = 1;
-        } else if (v == 1) {
-          overlap = 1;
-        }
+  double dr = 0.4 * s.a, dtheta = 0.4;
+  double const dr_max = 0.5 * s.L, dtheta_max = 10.0;
+  long long tests = 0, accepted = 0, moves = 0;
+  long long const total = equil + sweeps;
+  double acc_last[2] = {0.0, 0.0}, t_prod = 0.0;
+  long long blk_att[2] = {0, 0}, blk_acc[2] = {0, 0}, blk_first = 1;
+  double blk_s2 = 0.0;
+  int blk = 0, lib_error = 0;
+  prog.t0 = prog.last = now();
+  for (long long sw = 0; sw < total && !lib_error; ++sw) {
+    int const production = sw >= equil;
+    long long att[2] = {0, 0}, acc[2] = {0, 0}, sweep_tests = 0;
+    double const t0 = now();
+    for (long k = 0; k < n; ++k) {
+      int const i = (int)(rng_next(&g) % (uint64_t)n);
+      int const rotate = rng_uniform(&g) < 0.5;
+      int const r = trial_move(&s, &g, i, rotate, dr, dtheta, &sweep_tests);
+      if (r < 0) {
+        lib_error = 1;
+        break;
       }
-    });
-    if (overlap || lib_error) continue;
-    ++accepted;
-    int const c_old = s.cell_of[i], c_new = cell_index(&s, xn);
-    memcpy(s.x + 3 * i, xn, sizeof xn);
-    memcpy(s.u + 3 * i, un, sizeof un);
-    memcpy(s.q + 6 * i, qn, sizeof qn);
-    if (c_new != c_old) {
-      cell_remove(&s, c_old, i);
-      cell_add(&s, c_new, i);
+      att[rotate]++, acc[rotate] += r;
     }
+    for (int k = 0; k < 2; ++k) acc_last[k] = att[k] ? (double)acc[k] / (double)att[k] : 0.0;
+    if (!production) {
+      /* Step tuning: step *= (acceptance / target)^gain, factor clamped to
+       * [0.5, 2], gain 1 for the first 4 sweeps then 4 / (sweep + 1) (a
+       * Robbins-Monro gain, which averages out the noise of the
+       * acceptance of one sweep). */
+      double f[2];
+      double const gain = sw < 4 ? 1.0 : 4.0 / (double)(sw + 1);
+      for (int k = 0; k < 2; ++k) {
+        f[k] = pow(acc_last[k] > 0.0 ? acc_last[k] / target : 0.0, gain);
+        f[k] = f[k] < 0.5 ? 0.5 : (f[k] > 2.0 ? 2.0 : f[k]);
+      }
+      dr = fmin(dr * f[0], dr_max);
+      dtheta = fmin(dtheta * f[1], dtheta_max);
+      if (sw + 1 == equil)
+        printf("equilibration: %ld sweeps, steps tuned to acceptance %g: translation dr = %.4g "
+               "(last sweep %.3f), rotation dtheta = %.4g (last sweep %.3f)\n",
+               equil, target, dr, acc_last[0], dtheta, acc_last[1]);
+    } else {
+      t_prod += now() - t0;
+      tests += sweep_tests;
+      moves += n;
+      accepted += acc[0] + acc[1];
+      for (int k = 0; k < 2; ++k) blk_att[k] += att[k], blk_acc[k] += acc[k];
+      blk_s2 += order_parameter(&s);
+      long long const done = sw - equil + 1;
+      if (done * blocks >= (long long)(blk + 1) * sweeps) {
+        long long const nsw = done - blk_first + 1;
+        double const s2 = order_parameter(&s);
+        printf("block %d: sweeps %lld-%lld, acceptance translation %.3f rotation %.3f, "
+               "S2 = %.4f (mean over the block; last sweep %.4f)\n",
+               blk + 1, blk_first, done,
+               blk_att[0] ? (double)blk_acc[0] / (double)blk_att[0] : 0.0,
+               blk_att[1] ? (double)blk_acc[1] / (double)blk_att[1] : 0.0, blk_s2 / (double)nsw,
+               s2);
+        if (xyz && write_xyz(xyz, &s, done, s2) != 0) file_error = 1;
+        if (have_gsd && write_gsd(&gsd, &s, (uint64_t)done, fbuf) != 0) file_error = 1;
+        blk++, blk_first = done + 1, blk_s2 = 0.0;
+        blk_att[0] = blk_att[1] = blk_acc[0] = blk_acc[1] = 0;
+      }
+    }
+    progress(&prog, sw + 1, total, 0.5 * (acc_last[0] + acc_last[1]));
   }
-  double const t1 = now();
+  if (prog.shown && prog.tty) fputc('\n', stderr);
   if (lib_error) return 2;
-  double const elapsed = t1 - t0;
-  printf("Monte Carlo: %d sweeps, %lld moves, acceptance rate %.3f, %lld overlap tests in %.3f s "
+  if (equil == 0)
+    printf("equilibration: none; translation dr = %.4g, rotation dtheta = %.4g\n", dr, dtheta);
+  if (sweeps == 0) {
+    double const s2 = order_parameter(&s);
+    if (xyz && write_xyz(xyz, &s, 0, s2) != 0) file_error = 1;
+    if (have_gsd && write_gsd(&gsd, &s, 0, fbuf) != 0) file_error = 1;
+  }
+  if (xyz && fclose(xyz) != 0) file_error = 1;
+  if (have_gsd && gsd_close(&gsd) != 0) file_error = 1;
+  if (file_error) fprintf(stderr, "pw85_mc: writing the configuration failed\n");
+  printf("Monte Carlo: %ld sweeps, %lld moves, acceptance rate %.3f, %lld overlap tests in %.3f s "
          "(%.3g tests/s)\n",
-         sweeps, moves, moves ? (double)accepted / (double)moves : 0.0, tests, elapsed,
-         elapsed > 0 ? (double)tests / elapsed : 0.0);
+         sweeps, moves, moves ? (double)accepted / (double)moves : 0.0, tests, t_prod,
+         t_prod > 0 ? (double)tests / t_prod : 0.0);
 
   /* Final check over every neighbour pair (i < j). The batch functions take
    * r12 = centres[j] - centres[i]: the periodic image of j nearest to i is
@@ -296,12 +593,12 @@ int main(int argc, char **argv) {
   printf("check: %lld neighbour pairs, min mu^2 = %.6f (pw85_contact_function_batch: %s), "
          "%lld pairs with mu^2 < 1, %lld overlapping (pw85_overlap_batch: %s)\n",
          m, mu2_min, pw85_strerror(st), bad, nov, pw85_strerror(st2));
-  int const rc = (st != PW85_OK || st2 != PW85_OK) ? 2 : (bad || nov) ? 1 : 0;
+  int const rc = (st != PW85_OK || st2 != PW85_OK || file_error) ? 2 : (bad || nov) ? 1 : 0;
   printf("%s\n", rc == 0 ? "OK: no overlapping pair" : "FAILED");
 
   for (int c = 0; c < ncells; ++c) free(s.members[c]);
   free(s.members), free(s.count), free(s.cap), free(s.cell_of);
-  free(s.x), free(s.u), free(s.q);
+  free(s.x), free(s.u), free(s.q), free(fbuf);
   free(pairs), free(img), free(centres), free(qall), free(out), free(ov), free(status);
   return rc;
 }
