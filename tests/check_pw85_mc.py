@@ -1,0 +1,209 @@
+#!/usr/bin/env python3
+"""Outputs of pw85_mc (docs/usage.md): options, XYZ and GSD files, step
+tuning, nematic order parameter.
+
+usage: check_pw85_mc.py PW85_MC PW85
+
+The GSD file is read back with python3-gsd (its C reader gsd.fl through
+gsd.hoomd, and its pure-Python reader gsd.pygsd); the XYZ file is parsed
+here. No pair of the last XYZ frame (doubles) may overlap, checked by the
+pw85 program's batch mode (exact predicate, mu^2 >= 1); the GSD frame
+(float32, positions rounded to about 4e-7 relative to the box) must give
+mu^2 > 1 - 1e-4. S2 is recomputed from the XYZ orientations with
+numpy.linalg.eigvalsh; the symmetry axes come from rotating z by the
+quaternions with the Hamilton product, independently of the program.
+"""
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+import gsd.hoomd
+import gsd.pygsd
+
+MC, CLI = sys.argv[1], sys.argv[2]
+FAILURES = []
+
+
+def check(cond, what):
+    if not cond:
+        FAILURES.append(what)
+        print("FAIL:", what)
+
+
+def run(args):
+    r = subprocess.run([MC] + args, capture_output=True, text=True)
+    return r.returncode, r.stdout, r.stderr
+
+
+def hamilton(p, q):
+    w1, x1, y1, z1 = p
+    w2, x2, y2, z2 = q
+    return np.array([w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2, w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+                     w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2, w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2])
+
+
+def axis(q_wxyz):
+    """The body z axis q e_z q* in the lab frame."""
+    conj = q_wxyz * np.array([1, -1, -1, -1])
+    return hamilton(hamilton(q_wxyz, [0.0, 0.0, 0.0, 1.0]), conj)[1:]
+
+
+def s2_of(quats_wxyz):
+    u = np.array([axis(q) for q in quats_wxyz])
+    qt = 1.5 * (u.T @ u) / len(u) - 0.5 * np.eye(3)
+    return np.linalg.eigvalsh(qt)[-1]
+
+
+def read_xyz(path):
+    frames = []
+    with open(path) as f:
+        lines = f.read().splitlines()
+    k = 0
+    while k < len(lines):
+        n = int(lines[k])
+        header = lines[k + 1]
+        rows = [l.split() for l in lines[k + 2:k + 2 + n]]
+        frames.append((header, rows))
+        k += 2 + n
+    return frames
+
+
+def block_lines(out):
+    return re.findall(r"^block (\d+): sweeps (\d+)-(\d+), acceptance translation (\S+) rotation (\S+), "
+                      r"S2 = (\S+) \(mean over the block; last sweep (\S+)\)$", out, re.M)
+
+
+def production_acceptance(out):
+    return float(re.search(r"acceptance rate (\S+),", out).group(1))
+
+
+def pair_lines(centres, radii, quats_wxyz, box, cutoff):
+    """20-number batch lines (c1, radii, quat, c2 = minimum image, radii, quat)."""
+    lines = []
+    n = len(centres)
+    for i in range(n):
+        d = centres - centres[i]
+        d -= box * np.round(d / box)
+        close = np.nonzero(np.einsum("ij,ij->i", d, d) < cutoff ** 2)[0]
+        for j in close[close > i]:
+            c2 = centres[i] + d[j]
+            nums = list(centres[i]) + list(radii) + list(quats_wxyz[i]) + list(c2) + list(radii) + list(quats_wxyz[j])
+            lines.append(" ".join(repr(float(x)) for x in nums))
+    return lines
+
+
+def batch(lines):
+    r = subprocess.run([CLI, "--batch"], input="\n".join(lines) + "\n", capture_output=True, text=True)
+    rows = [l.split(",") for l in r.stdout.splitlines()[1:]]
+    return r.returncode, rows
+
+
+def main():
+    rc, out, err = run(["--help"])
+    check(rc == 0 and out.startswith("usage: pw85_mc"), "--help: exit 0, usage on stdout")
+    for bad in (["--bogus"], ["--n"], ["--n", "x"], ["--n", "1"], ["--phi", "0.7"], ["--sweeps", "-1"],
+                ["--aspect", "0"], ["--target", "1.5"], ["--seed", "-3"], ["--n", "300", "--xyz",
+                "/nonexistent/dir/c.xyz"], ["--n", "300", "--gsd", "/nonexistent/dir/c.gsd"]):
+        rc, out, err = run(bad)
+        check(rc == 2 and "pw85_mc: " in err, f"{bad}: exit 2 and a message (got {rc})")
+
+    with tempfile.TemporaryDirectory() as d:
+        xyz, gsdf = os.path.join(d, "c.xyz"), os.path.join(d, "c.gsd")
+        args = ["--n", "300", "--equil", "10", "--sweeps", "8", "--blocks", "4", "--seed", "7",
+                "--phi", "0.3", "--xyz", xyz, "--gsd", gsdf, "--progress"]
+        rc, out, err = run(args)
+        check(rc == 0 and "OK: no overlapping pair" in out, f"run with --xyz --gsd: exit 0 (got {rc}: {err})")
+        check("pw85_mc: sweep 18/18, acceptance" in err, "--progress: progress lines on stderr")
+        blocks = block_lines(out)
+        check([b[1:3] for b in blocks] == [("1", "2"), ("3", "4"), ("5", "6"), ("7", "8")],
+              f"4 blocks of 2 sweeps reported (got {blocks})")
+        for b in blocks:
+            check(0.0 <= float(b[5]) <= 1.0 and 0.0 <= float(b[6]) <= 1.0, f"block {b[0]}: S2 in [0, 1]")
+        rc2, out2, _ = run(args[:-5])
+        check(block_lines(out2) == blocks, "same seed, same blocks")
+
+        # XYZ
+        frames = read_xyz(xyz)
+        check(len(frames) == 4, f"XYZ: 4 frames (got {len(frames)})")
+        header, rows = frames[-1]
+        m = re.match(r'Lattice="(\S+) 0 0 0 (\S+) 0 0 0 (\S+)" pbc="T T T" '
+                     r"Properties=species:S:1:pos:R:3:orientation:R:4:aspherical_shape:R:3 "
+                     r"sweep=(\d+) S2=(\S+)$", header)
+        check(m is not None, f"XYZ: extended XYZ comment line ({header!r})")
+        box = float(m.group(1))
+        check(m.group(1) == m.group(2) == m.group(3) and int(m.group(4)) == 8, "XYZ: cubic box, sweep 8")
+        check(len(rows) == 300 and all(len(r) == 11 and r[0] == "E" for r in rows), "XYZ: 300 rows of 11 columns")
+        a = np.array([[float(x) for x in r[1:]] for r in rows])
+        pos, q_xyzw, shape = a[:, 0:3], a[:, 3:7], a[:, 7:10]
+        q_wxyz = q_xyzw[:, [3, 0, 1, 2]]
+        check(np.all((pos >= 0) & (pos < box)), "XYZ: positions in [0, L)")
+        check(np.max(np.abs(np.linalg.norm(q_xyzw, axis=1) - 1)) < 1e-15, "XYZ: unit quaternions")
+        check(np.all(shape == [0.5, 0.5, 1.5]), "XYZ: aspherical_shape = semi-axes (0.5, 0.5, 1.5)")
+        s2 = s2_of(q_wxyz)
+        check(abs(s2 - float(m.group(5))) < 1e-12, f"XYZ: S2 of the frame {m.group(5)} vs numpy {s2}")
+        check(abs(s2 - float(blocks[-1][6])) <= 6e-5, f"printed S2 of the last sweep {blocks[-1][6]} vs numpy {s2}")
+
+        # GSD, C reader through gsd.hoomd and pure-Python reader
+        with gsd.hoomd.open(gsdf, "rb") as traj:
+            check(len(traj) == 4, f"GSD: 4 frames (got {len(traj)})")
+            f0, f3 = traj[0], traj[3]
+            steps = [int(traj[k].configuration.step) for k in range(len(traj))]
+            gpos, gq = np.array(f3.particles.position, float), np.array(f3.particles.orientation, float)
+            gbox = np.array(f3.configuration.box, float)
+            shapes, types, typeid, n = f3.particles.type_shapes, f3.particles.types, f3.particles.typeid, f3.particles.N
+            moved = np.mean(np.any(np.array(f0.particles.position) != f3.particles.position, axis=1)
+                            | np.any(np.array(f0.particles.orientation) != f3.particles.orientation, axis=1))
+        with gsd.pygsd.GSDFile(open(gsdf, "rb")) as g:
+            py = gsd.hoomd.HOOMDTrajectory(g)
+            check(len(py) == 4 and np.array_equal(py[3].particles.position, gpos.astype(np.float32))
+                  and g.schema == "hoomd" and g.gsd_version == (2, 0),
+                  "GSD: the pure-Python reader reads the same file")
+        check(steps == [2, 4, 6, 8], f"GSD: steps {steps}")
+        check(n == 300 and types == ["E"] and np.all(np.asarray(typeid) == 0), "GSD: N, types, typeid")
+        check(np.allclose(gbox, [box, box, box, 0, 0, 0], rtol=1e-7, atol=0), f"GSD: box {gbox} vs {box}")
+        check(shapes == [{"type": "Ellipsoid", "a": 0.5, "b": 0.5, "c": 1.5}], f"GSD: type_shapes {shapes}")
+        check(np.all((gpos >= -gbox[0] / 2) & (gpos < gbox[0] / 2)), "GSD: positions in [-L/2, L/2)")
+        check(np.max(np.abs(np.linalg.norm(gq, axis=1) - 1)) < 3e-7, "GSD: unit quaternions (float32)")
+        dpos = gpos - (pos - box / 2)
+        dpos -= box * np.round(dpos / box)
+        check(np.max(np.abs(dpos)) < 1e-6 * box, "GSD positions = XYZ positions - L/2 (float32)")
+        check(np.max(np.abs(gq - q_wxyz)) < 1e-7, "GSD orientation (w, x, y, z) = XYZ (x, y, z, w) reordered")
+        check(moved > 0.5, f"GSD: most particles moved or turned between the first and last frame ({moved})")
+
+        # no overlapping pair: exact on the XYZ doubles, loosely on the GSD floats
+        cutoff = 2 * 1.5
+        rc, rows = batch(pair_lines(pos, [0.5, 0.5, 1.5], q_wxyz, box, cutoff))
+        check(rc == 0 and len(rows) > 300 and all(r[4] == "0" and r[3] == "0" and float(r[1]) >= 1.0 for r in rows),
+              f"XYZ: no overlap among {len(rows)} close pairs (exit {rc})")
+        print(f"XYZ: {len(rows)} pairs closer than {cutoff}, min mu^2 {min(float(r[1]) for r in rows):.6f}")
+        rc, rows = batch(pair_lines(gpos, [0.5, 0.5, 1.5], gq, gbox[0], cutoff))
+        check(rc == 0 and all(float(r[1]) > 1 - 1e-4 for r in rows), "GSD: no pair with mu^2 < 1 - 1e-4")
+
+    # step tuning reaches the target acceptance
+    for target in ("0.3", "0.5"):
+        rc, out, _ = run(["--n", "300", "--phi", "0.4", "--equil", "40", "--sweeps", "20", "--seed", "3",
+                          "--target", target])
+        acc = production_acceptance(out)
+        check(rc == 0 and abs(acc - float(target)) <= 0.05, f"phi 0.4, target {target}: acceptance {acc}")
+    # S2: near 0 for an isotropic dilute run (about 1/sqrt(N)), near 1 near the aligned start
+    rc, out, _ = run(["--n", "300", "--phi", "0.02", "--equil", "20", "--sweeps", "20", "--seed", "5"])
+    s2 = [float(b[5]) for b in block_lines(out)]
+    check(rc == 0 and len(s2) == 4 and all(0 <= x < 0.2 for x in s2), f"isotropic run: S2 {s2} < 0.2")
+    rc, out, _ = run(["--n", "300", "--phi", "0.4", "--equil", "2", "--sweeps", "2", "--seed", "5"])
+    s2 = [float(b[5]) for b in block_lines(out)]
+    check(rc == 0 and all(x > 0.8 for x in s2), f"dense run from the aligned lattice: S2 {s2} > 0.8")
+    rc, out, _ = run(["--n", "300", "--aspect", "0.3", "--phi", "0.3", "--equil", "4", "--sweeps", "4"])
+    check(rc == 0 and "oblate" in out and "OK: no overlapping pair" in out, "oblate spheroids: exit 0")
+
+    if FAILURES:
+        print(f"{len(FAILURES)} failures")
+        return 1
+    print("all checks passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
