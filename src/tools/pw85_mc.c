@@ -94,6 +94,12 @@ static void cell_remove(scene_t *s, int c, int i) {
     }
 }
 
+static void free_scene(scene_t *s, int ncells) {
+  for (int c = 0; c < ncells; ++c) free(s->members[c]);
+  free(s->members), free(s->count), free(s->cap), free(s->cell_of);
+  free(s->x), free(s->u), free(s->q);
+}
+
 /* Minimum-image separation r = p_j - p_i. */
 static void min_image(const scene_t *s, const double *pi, const double *pj, double r[3]) {
   for (int d = 0; d < 3; ++d) {
@@ -416,6 +422,25 @@ int main(int argc, char **argv) {
     fprintf(stderr, "pw85_mc: packing fraction too high for the initial lattice\n");
     return 2;
   }
+  /* Output files first: nothing to free when they cannot be created. */
+  FILE *xyz = NULL;
+  gsd_writer gsd;
+  int have_gsd = 0, file_error = 0;
+  if (xyz_path && !(xyz = fopen(xyz_path, "w"))) {
+    fprintf(stderr, "pw85_mc: cannot write '%s': %s\n", xyz_path, strerror(errno));
+    return 2;
+  }
+  if (gsd_path) {
+    char app[64];
+    snprintf(app, sizeof app, "pw85_mc %s", pw85_version());
+    if (gsd_open(&gsd, gsd_path, app) != 0) {
+      fprintf(stderr, "pw85_mc: cannot write '%s': %s\n", gsd_path, strerror(errno));
+      if (xyz) fclose(xyz);
+      return 2;
+    }
+    have_gsd = 1;
+  }
+
   s.x = malloc(3 * (size_t)n * sizeof(double));
   s.u = malloc(3 * (size_t)n * sizeof(double));
   s.q = malloc(6 * (size_t)n * sizeof(double));
@@ -439,23 +464,6 @@ int main(int argc, char **argv) {
          "%d^3 cells, seed %llu\n",
          n, s.c > s.a ? "prolate" : (s.c < s.a ? "oblate" : "spherical"), s.a, s.c, phi, s.L,
          s.nc, seed);
-
-  FILE *xyz = NULL;
-  gsd_writer gsd;
-  int have_gsd = 0, file_error = 0;
-  if (xyz_path && !(xyz = fopen(xyz_path, "w"))) {
-    fprintf(stderr, "pw85_mc: cannot write '%s': %s\n", xyz_path, strerror(errno));
-    return 2;
-  }
-  if (gsd_path) {
-    char app[64];
-    snprintf(app, sizeof app, "pw85_mc %s", pw85_version());
-    if (gsd_open(&gsd, gsd_path, app) != 0) {
-      fprintf(stderr, "pw85_mc: cannot write '%s': %s\n", gsd_path, strerror(errno));
-      return 2;
-    }
-    have_gsd = 1;
-  }
 
   rng_t g = {seed};
   double dr = 0.4 * s.a, dtheta = 0.4;
@@ -525,7 +533,13 @@ int main(int argc, char **argv) {
     progress(&prog, sw + 1, total, 0.5 * (acc_last[0] + acc_last[1]));
   }
   if (prog.shown && prog.tty) fputc('\n', stderr);
-  if (lib_error) return 2;
+  if (lib_error) {
+    if (xyz) fclose(xyz);
+    if (have_gsd) gsd_close(&gsd);
+    free_scene(&s, ncells);
+    free(fbuf);
+    return 2;
+  }
   if (equil == 0)
     printf("equilibration: none; translation dr = %.4g, rotation dtheta = %.4g\n", dr, dtheta);
   if (sweeps == 0) {
@@ -581,8 +595,8 @@ int main(int argc, char **argv) {
     memcpy(qall + 6 * (n + k), s.q + 6 * j, 6 * sizeof(double));
     pairs[2 * k + 1] = n + k;
   }
-  int const st = pw85_contact_function_batch(ntot, centres, qall, m, pairs, out, status, threads);
-  int const st2 = pw85_overlap_batch(ntot, centres, qall, m, pairs, ov, NULL, threads);
+  int const st = pw85_contact_function_batch(ntot, centres, qall, m, pairs, out, status, (int)threads);
+  int const st2 = pw85_overlap_batch(ntot, centres, qall, m, pairs, ov, NULL, (int)threads);
   long long bad = 0, nov = 0;
   double mu2_min = INFINITY;
   for (long long k = 0; k < m; ++k) {
@@ -596,9 +610,8 @@ int main(int argc, char **argv) {
   int const rc = (st != PW85_OK || st2 != PW85_OK || file_error) ? 2 : (bad || nov) ? 1 : 0;
   printf("%s\n", rc == 0 ? "OK: no overlapping pair" : "FAILED");
 
-  for (int c = 0; c < ncells; ++c) free(s.members[c]);
-  free(s.members), free(s.count), free(s.cap), free(s.cell_of);
-  free(s.x), free(s.u), free(s.q), free(fbuf);
+  free_scene(&s, ncells);
+  free(fbuf);
   free(pairs), free(img), free(centres), free(qall), free(out), free(ov), free(status);
   return rc;
 }
