@@ -195,6 +195,9 @@ def main():
     rc, out, _ = run(["--n", "300", "--phi", "0.4", "--equil", "2", "--sweeps", "2", "--seed", "5"])
     s2 = [float(b[5]) for b in block_lines(out)]
     check(rc == 0 and all(x > 0.8 for x in s2), f"dense run from the aligned lattice: S2 {s2} > 0.8")
+    rc, out, _ = run(["--n", "300", "--equil", "0", "--sweeps", "2", "--blocks", "9"])
+    check(rc == 0 and re.search(r"^equilibration: none;.*\nblock 1: sweeps 1-1,.*\nblock 2: sweeps 2-2,", out, re.M)
+          is not None, "--equil 0: fixed steps reported first; --blocks above --sweeps: one block per sweep")
     rc, out, _ = run(["--n", "300", "--aspect", "0.3", "--phi", "0.3", "--equil", "4", "--sweeps", "4"])
     check(rc == 0 and "oblate" in out and "OK: no overlapping pair" in out, "oblate spheroids: exit 0")
 

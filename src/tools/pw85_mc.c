@@ -474,6 +474,8 @@ int main(int argc, char **argv) {
   long long blk_att[2] = {0, 0}, blk_acc[2] = {0, 0}, blk_first = 1;
   double blk_s2 = 0.0;
   int blk = 0, lib_error = 0;
+  if (equil == 0)
+    printf("equilibration: none; translation dr = %.4g, rotation dtheta = %.4g\n", dr, dtheta);
   prog.t0 = prog.last = now();
   for (long long sw = 0; sw < total && !lib_error; ++sw) {
     int const production = sw >= equil;
@@ -540,8 +542,6 @@ int main(int argc, char **argv) {
     free(fbuf);
     return 2;
   }
-  if (equil == 0)
-    printf("equilibration: none; translation dr = %.4g, rotation dtheta = %.4g\n", dr, dtheta);
   if (sweeps == 0) {
     double const s2 = order_parameter(&s);
     if (xyz && write_xyz(xyz, &s, 0, s2) != 0) file_error = 1;
