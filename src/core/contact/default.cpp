@@ -145,26 +145,39 @@ bool dd_point(double x, Vec3 const &r, Sym3 const &q1, Sym3 const &q2, DDPoint &
   return true;
 }
 
+// Bound on max f over [lo, hi] from the tangents at lo and hi (f concave,
+// eq. (M3)), their values and slopes widened by their errors:
+// f <= fl + sl (x - lo) and f <= fh + sh (x - hi), at their intersection
+// (an infinite slope: the other tangent at the far end).
+double tangent_bound(DDPoint const &lo, DDPoint const &hi) noexcept {
+  double const fl = lo.f + lo.ef, sl = lo.df + lo.edf;
+  double const fh = hi.f + hi.ef, sh = hi.df - hi.edf;
+  double const w = hi.x - lo.x;
+  if (!std::isfinite(sh)) return std::isfinite(sl) ? fl + std::fmax(sl, 0.0) * w : sl;
+  if (!std::isfinite(sl)) return fh + std::fmax(-sh, 0.0) * w;
+  double const xc = std::fmin(std::fmax((fh - fl + sl * lo.x - sh * hi.x) / (sl - sh), lo.x), hi.x);
+  return std::fmax(fl + sl * (xc - lo.x), fh + sh * (xc - hi.x));
+}
+
 // Step 4 of DEFAULT (docs/methods.md, eq. (M26)): max f from double-double
 // evaluations of f and f' only, with a bound that holds whatever the
 // curvature of f (f concave, eq. (M3)). The side of 1/2 holding the
 // maximiser is taken from the sign of f'(1/2); a maximiser above 1/2 is
 // found as 1 - lambda' with Q1 and Q2 exchanged (f(lambda; Q1, Q2) =
 // f(1 - lambda; Q2, Q1)), so that lambda' near 0 is represented to full
-// relative precision where 1 - lambda' is not. The bracket [lo, hi] of the
-// maximiser (lo = 0 at first, where f = 0, f' = r^T Q1^{-1} r) shrinks by
-// steps to the intersection of the tangents at lo and hi, and by a
-// bisection (geometric while hi / lo > 4: the maximiser can lie anywhere
-// down to the smallest double) whenever a step did not halve log(hi / lo).
-// Bound, while the sign of f' at every point was certain (|f'| > edf):
-// f* lies below the intersection of the tangents at lo and hi, their values
-// and slopes widened by their errors; at the first point where f' is within
-// its error, f* <= f + ef + (|f'| + edf) (hi - lo) there too, and that bound
-// is kept (the later steps, by the sign of the computed f', improve the
-// largest f met but are no longer certain). Ends when the bound is within
-// kDDGapTol of the largest f met, or no double lies inside [lo, hi];
-// mu2 = the largest f met, its error the bound minus mu2 plus the error of
-// that f. kNoConvergence when no evaluation succeeds.
+// relative precision where 1 - lambda' is not. The bracket [lo, hi] (by the
+// sign of the computed f'; lo = 0 at first, where f = 0,
+// f' = r^T Q1^{-1} r) shrinks by steps to the intersection of the tangents
+// at lo and hi, and by a bisection (geometric while hi / lo > 4: the
+// maximiser can lie anywhere down to the smallest double) whenever a step
+// did not halve log(hi / lo). Bound: [lo_c, hi_c], the points nearest the
+// maximiser where |f'| > edf (its sign certain), bracket the maximiser;
+// f* is below tangent_bound(lo_c, hi_c), and below f + ef +
+// (|f'| + edf) max(x - lo_c, hi_c - x) at every point x. Ends when the
+// smallest such bound is within kDDGapTol of the largest f met, or no
+// double lies inside [lo, hi]; mu2 = the largest f met, its error the bound
+// minus mu2 plus the error of that f. kNoConvergence when no evaluation
+// succeeds.
 __attribute__((noinline)) Status dd_bracket(Vec3 const &r, Sym3 const &q1_in,
                                             Sym3 const &q2_in, double hint,
                                             MethodResult &res) noexcept {
@@ -178,23 +191,18 @@ __attribute__((noinline)) Status dd_bracket(Vec3 const &r, Sym3 const &q1_in,
   DDPoint best = hi;
   ++res.iterations;
   if (!dd_point(0.0, r, q1, q2, lo)) lo = DDPoint{0.0, 0.0, inf, 0.0, 0.0};
-  // Bound on f* once a sign was uncertain (inf: every sign certain so far).
-  double upper = inf;
-  if (std::fabs(hi.df) <= hi.edf) upper = hi.f + hi.ef + (std::fabs(hi.df) + hi.edf) * 0.5;
+  DDPoint lo_c = lo, hi_c = hi;
+  // f' at 1/2 within its error: the maximiser may lie on either side.
+  if (std::fabs(hi.df) <= hi.edf) hi_c = DDPoint{1.0, 0.0, -inf, 0.0, 0.0};
+  double upper = inf;  // bound on f*
   // The first point: the hint, when it lies on the side of the maximiser
   // (1 - hint is exact for hint >= 1/2).
   double x = swap ? 1.0 - hint : hint;
   bool take_x = x > 0.0 && x < 0.5;
   double width = inf;  // log(hi / lo) before the last step
-  double bound = inf;  // the tangents' bound on the current bracket
   for (int k = 0; k < kDDMaxBracket; ++k) {
-    // Tangents at lo and hi, widened: f <= fl + sl (x - lo), f <= fh + sh (x - hi).
-    double const fl = lo.f + lo.ef, sl = lo.df + lo.edf;
-    double const fh = hi.f + hi.ef, sh = hi.df - hi.edf;
-    double const xc =
-        std::fmin(std::fmax((fh - fl + sl * lo.x - sh * hi.x) / (sl - sh), lo.x), hi.x);
-    bound = std::isfinite(sl) ? std::fmax(fl + sl * (xc - lo.x), best.f) : inf;
-    if (bound - best.f <= kDDGapTol * best.f) break;
+    upper = std::fmin(upper, tangent_bound(lo_c, hi_c));
+    if (upper - best.f <= kDDGapTol * best.f) break;
     if (!take_x) {
       // The tangents' intersection, or a bisection when the last step did
       // not halve log(hi / lo).
@@ -212,17 +220,23 @@ __attribute__((noinline)) Status dd_bracket(Vec3 const &r, Sym3 const &q1_in,
     ++res.iterations;
     if (!dd_point(x, r, q1, q2, p)) break;
     if (p.f > best.f) best = p;
-    if (upper == inf && std::fabs(p.df) <= p.edf)
-      upper = std::fmin(bound, p.f + p.ef + (std::fabs(p.df) + p.edf) * (hi.x - lo.x));
+    if (p.df > p.edf && p.x > lo_c.x)
+      lo_c = p;
+    else if (p.df < -p.edf && p.x < hi_c.x)
+      hi_c = p;
+    else if (std::fabs(p.df) <= p.edf)
+      upper = std::fmin(upper, p.f + p.ef + (std::fabs(p.df) + p.edf) *
+                                                std::fmax(p.x - lo_c.x, hi_c.x - p.x));
     if (p.df > 0.0)
       lo = p;
     else
       hi = p;
   }
+  upper = std::fmin(upper, tangent_bound(lo_c, hi_c));
   if (!(best.f > 0.0)) return kNoConvergence;
   res.mu2 = best.f;
   res.lambda = swap ? 1.0 - best.x : best.x;
-  res.mu2_error = std::fmax((upper == inf ? bound : upper) - best.f, 0.0) + best.ef;
+  res.mu2_error = std::fmax(upper - best.f, 0.0) + best.ef;
   return res.mu2_error <= kDefaultRelAccuracy * res.mu2 ? kOk : kInaccurate;
 }
 
