@@ -25,8 +25,9 @@
 //     |f''| delta^2 / 2 only: the accuracy of mu2 is the accuracy of the
 //     double-double f, about kappa(Q) 2^-104 relative.
 //  4. when the double iteration failed (Q(lambda) not numerically positive
-//     definite in double), the root of f' is bracketed by bisection on the
-//     sign of the double-double f'.
+//     definite in double) or its f'' is not accurate to 2^-6 (maximiser
+//     very near 0 or 1), dd_bracket (eq. (M26)): double-double f and f'
+//     only, with a bound on max f from concavity.
 #include <cmath>
 #include <limits>
 
