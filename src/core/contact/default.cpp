@@ -363,8 +363,9 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
   double a = std::isfinite(e.f) ? -e.d2f : 0.0;  // -f'' > 0
   bool const have_d3f = std::isfinite(e.f) && std::isfinite(e.d3f);
   double const d3f = have_d3f ? e.d3f : 0.0;
-  // The first-order error bound of the double f'' (rel_double times its
-  // terms -2 phi, 2 p' phi', p phi'') below kDDTrustRel of it.
+  // The first-order error bound of the double f'' below kDDTrustRel of it:
+  // rel_double times the sum of its terms |-2 phi| + |2 p' phi'| +
+  // |p phi''| <= 4 phi + 4 |p' phi'| + a (eq. (M4)).
   bool const trust_a =
       std::isfinite(e.f) && a > 0.0 &&
       rel_double * (4.0 * e.phi + 4.0 * std::fabs((1.0 - 2.0 * e.lambda) * e.dphi) + a) <=
