@@ -72,6 +72,50 @@ static const Pair extreme[] = {
       0x1.4735eb1ce9f86p-128, -0x1.843a357b30d19p-130, 0x1.024b212bd2f7dp-128}},
 };
 
+/* Pairs of semi-axes log-uniform in [1e-37, 1e37] on which DEFAULT
+ * returned PW85_OK with relative errors 1.1e-9, 2.5e-9, 1.3e-8, 5.4e-13
+ * and 7.5e-11 (bench/extreme_scale_fuzz.py): the maximiser is within
+ * 1e-11 ... 1e-45 of 0 or 1, where f varies on the scale of lambda or of
+ * 1 - lambda. mu2: the exact maximum of f, rounded to double, from
+ * `bench/extreme_scale_fuzz.py --reference` (rational arithmetic on the
+ * double inputs, bracket of relative width below 1e-130; mpmath at 2000
+ * bits agrees to the last bit). */
+static const struct {
+  Pair p;
+  double mu2;
+} near_end[] = {
+    {{{0x1.18e49a7fb1ea4p-85, 0x1.7508cf8ba221ep-90, -0x1.144393a8bb107p-86},
+      {0x1.0f16d4d011de2p+158, 0x1.1ffa3c8ed5d27p+160, -0x1.6bbdf140d8979p+159,
+       0x1.31eafb80b1f09p+162, -0x1.826700ed3b969p+161, 0x1.e80fc6763310ep+160},
+      {0x1.c35d9fd620b7dp-184, -0x1.836a634b3e9b4p-183, -0x1.d9becc61edbc3p-182,
+       0x1.4c86a6d6128e6p-182, 0x1.969fd826944b8p-181, 0x1.f13c0935e8e43p-180}},
+     0x1.624f36497b7f0p-286},
+    {{{0x1.a325ecbd71374p+75, -0x1.2264daac4dc9bp+79, -0x1.725f1ae7f3364p+79},
+      {0x1.0c6c78a6cb8c5p+0, 0x1.d3b149d74cf46p+2, 0x1.60100c8f5492dp+1,
+       0x1.9773ab49cc06cp+5, 0x1.32b74bf654570p+4, 0x1.cdc55fbf64240p+2},
+      {0x1.ffd6e0d529182p+161, 0x1.5394f2fa8fc4fp+170, -0x1.21c6960491e9fp+170,
+       0x1.c29802c791d8dp+178, -0x1.80817445f27ffp+178, 0x1.481c5300890a3p+178}},
+     0x1.57c6fea039d77p+40},
+    {{{0x1.24918d8debf95p-73, -0x1.c8e687dd6c4e2p-74, -0x1.1bcd519b9aacfp-73},
+      {0x1.b18b5d26d70bcp+226, -0x1.6287fae156341p+227, 0x1.38ffcc83338d9p+222,
+       0x1.23b305b545edep+228, -0x1.27f5692549a26p+223, 0x1.1917e192b9fc6p+220},
+      {0x1.1bf6eb53be10ep+104, -0x1.98a05423c6dd0p+102, -0x1.194b2650397a6p+101,
+       0x1.2601efe08536dp+101, 0x1.94c8618beca53p+99, 0x1.16a5cfc69eed7p+98}},
+     0x1.42533513052a4p-323},
+    {{{0x1.e732a6dac5296p+96, 0x1.96a86df0bf3ccp+95, -0x1.61360941fce97p+95},
+      {0x1.ef82117fcec61p+5, -0x1.77bc777d64913p+7, -0x1.84bbcdb012f2dp+5,
+       0x1.1cea3e430f133p+9, 0x1.26c54fcecf553p+7, 0x1.30f7a86b62db7p+5},
+      {0x1.3db697e333187p+212, 0x1.e6da92aa45353p+206, 0x1.f9f44013bf53ep+209,
+       0x1.75050cca09ebep+201, 0x1.83a771a298e18p+204, 0x1.92dcd1171d4ebp+207}},
+     0x1.776f5d3870b8bp+47},
+    {{{-0x1.c203b9a72c854p+88, 0x1.86a5c4f43087dp+88, -0x1.a497887342c98p+88},
+      {0x1.74ba2f94cd1ffp+173, -0x1.89ee729aaea0cp+173, 0x1.419aa7137d686p+173,
+       0x1.a147286fda0dcp+173, -0x1.54187b6292cb6p+173, 0x1.1588adc9e4f1cp+173},
+      {0x1.bd864b36abab7p-13, 0x1.b0d4597ee28f6p-12, 0x1.38d1ad8440c93p-14,
+       0x1.a47f02f888d4fp-11, 0x1.2fe7c60319058p-13, 0x1.b74887f689281p-16}},
+     0x1.e2cbcf8b8d2acp+32},
+};
+
 /* What a status that writes an estimate promises (include/pw85.h). */
 static void check_estimate(int status, const pw85_result *res) {
   g_assert_true(status == PW85_OK || status == PW85_ERR_INACCURATE ||
@@ -106,6 +150,27 @@ static void test_lambda_near_1(gconstpointer data) {
                                                method, &res);
     g_assert_true(res.lambda >= 0.0 && res.lambda <= 1.0);
     if (method == PW85_METHOD_DEFAULT) g_assert_cmpint(s, ==, PW85_OK);
+  }
+}
+
+/* DEFAULT on `near_end`: PW85_OK with mu2 within the documented 1e-14 of
+ * the exact value, or PW85_ERR_INACCURATE with mu2_error at least the
+ * actual error (docs/methods.md). */
+static void test_near_end_honest(void) {
+  for (size_t k = 0; k < G_N_ELEMENTS(near_end); ++k) {
+    Pair const *p = &near_end[k].p;
+    double const ref = near_end[k].mu2;
+    pw85_result res;
+    int const s = pw85_contact_function_method(p->r, p->q1, p->q2, PW85_METHOD_DEFAULT, &res);
+    double const err = fabs(res.mu2 - ref);
+    if (g_test_verbose())
+      g_test_message("pair %zu: status %d, relative error %.3e, mu2_error / mu2 %.3e", k, s,
+                     err / ref, res.mu2_error / res.mu2);
+    g_assert_true(s == PW85_OK || s == PW85_ERR_INACCURATE);
+    if (s == PW85_OK)
+      g_assert_cmpfloat(err, <=, 1e-14 * ref);
+    else
+      g_assert_cmpfloat(err, <=, res.mu2_error);
   }
 }
 
@@ -184,5 +249,7 @@ int main(int argc, char **argv) {
     g_test_add_data_func(path, GINT_TO_POINTER(m), test_lambda_near_1);
   }
   g_test_add_func("/pw85_contact/failing_evaluation/repeatable", test_contact_repeatable);
+  g_test_add_func("/pw85_contact_function_method/default/maximiser_near_end/honest",
+                  test_near_end_honest);
   return g_test_run();
 }

@@ -25,9 +25,11 @@
 //     |f''| delta^2 / 2 only: the accuracy of mu2 is the accuracy of the
 //     double-double f, about kappa(Q) 2^-104 relative.
 //  4. when the double iteration failed (Q(lambda) not numerically positive
-//     definite in double), the root of f' is bracketed by bisection on the
-//     sign of the double-double f'.
+//     definite in double) or its f'' is not accurate to 2^-6 (maximiser
+//     very near 0 or 1), dd_bracket (eq. (M26)): double-double f and f'
+//     only, with a bound on max f from concavity.
 #include <cmath>
+#include <limits>
 
 #include "common/fp.hpp"
 #include "contact/contact.hpp"
@@ -60,7 +62,8 @@ constexpr double kDDGapTol = 0x1p-60;
 constexpr double kDDModelGap = 0x1p-40;
 constexpr double kDDSlopeRel = 0x1p-10;
 constexpr int kDDMaxNewton = 6;
-constexpr int kDDMaxBisect = 80;
+constexpr double kDDTrustRel = 0x1p-6;
+constexpr int kDDMaxBracket = 160;
 // Taylor coefficients 1/3! and 1/4! (rounded): multiplications, since the
 // divider is shared by every division and square root of the fast path
 // (docs/methods.md, (M21); a division by a constant is not turned into a
@@ -124,6 +127,118 @@ PW85_ALWAYS_INLINE double model_error(double edf, double h, double a, double d4f
 template <class E>
 PW85_ALWAYS_INLINE double model_increment(double h, E const &e) noexcept {
   return h * (e.df + h * (0.5 * e.d2f + h * (e.d3f * kInv6 + h * e.d4f * kInv24)));
+}
+
+// A double-double evaluation (f_dd.hpp) with bounds on the errors of f and
+// f': ef from the bound (M6) of phi plus the rounding of f; edf as in (M10),
+// rel (|p'| phi + p |phi'|), times 4 for the error of phi' (first order
+// in the error of s, as that of phi), plus the rounding of f'.
+struct DDPoint {
+  double x, f, df, ef, edf;
+};
+
+bool dd_point(double x, Vec3 const &r, Sym3 const &q1, Sym3 const &q2, DDPoint &p) noexcept {
+  FEvalDD fd;
+  if (!f_eval_dd(x, r, q1, q2, fd) || !std::isfinite(fd.rel)) return false;
+  double const pp = x * (1.0 - x), p1 = std::fabs(1.0 - 2.0 * x);
+  p = DDPoint{x, fd.f, fd.df, (fd.rel + kU) * fd.f,
+              4.0 * fd.rel * (p1 * fd.phi + pp * std::fabs(fd.dphi)) + kU * std::fabs(fd.df)};
+  return true;
+}
+
+// Bound on max f over [lo, hi] from the tangents at lo and hi (f concave,
+// eq. (M3)), their values and slopes widened by their errors:
+// f <= fl + sl (x - lo) and f <= fh + sh (x - hi), at their intersection
+// (an infinite slope: the other tangent at the far end).
+double tangent_bound(DDPoint const &lo, DDPoint const &hi) noexcept {
+  double const fl = lo.f + lo.ef, sl = lo.df + lo.edf;
+  double const fh = hi.f + hi.ef, sh = hi.df - hi.edf;
+  double const w = hi.x - lo.x;
+  if (!std::isfinite(sh)) return std::isfinite(sl) ? fl + std::fmax(sl, 0.0) * w : sl;
+  if (!std::isfinite(sl)) return fh + std::fmax(-sh, 0.0) * w;
+  double const xc = std::fmin(std::fmax((fh - fl + sl * lo.x - sh * hi.x) / (sl - sh), lo.x), hi.x);
+  return std::fmax(fl + sl * (xc - lo.x), fh + sh * (xc - hi.x));
+}
+
+// Step 4 of DEFAULT (docs/methods.md, eq. (M26)): max f from double-double
+// evaluations of f and f' only, with a bound that holds whatever the
+// curvature of f (f concave, eq. (M3)). The side of 1/2 holding the
+// maximiser is taken from the sign of f'(1/2); a maximiser above 1/2 is
+// found as 1 - lambda' with Q1 and Q2 exchanged (f(lambda; Q1, Q2) =
+// f(1 - lambda; Q2, Q1)), so that lambda' near 0 is represented to full
+// relative precision where 1 - lambda' is not. The bracket [lo, hi] (by the
+// sign of the computed f'; lo = 0 at first, where f = 0,
+// f' = r^T Q1^{-1} r) shrinks by steps to the intersection of the tangents
+// at lo and hi, and by a bisection (geometric while hi / lo > 4: the
+// maximiser can lie anywhere down to the smallest double) whenever a step
+// did not halve log(hi / lo). Bound: [lo_c, hi_c], the points nearest the
+// maximiser where |f'| > edf (its sign certain), bracket the maximiser;
+// f* is below tangent_bound(lo_c, hi_c), and below f + ef +
+// (|f'| + edf) max(x - lo_c, hi_c - x) at every point x. Ends when the
+// smallest such bound is within kDDGapTol of the largest f met, or no
+// double lies inside [lo, hi]; mu2 = the largest f met, its error the bound
+// minus mu2 plus the error of that f. kNoConvergence when no evaluation
+// succeeds.
+__attribute__((noinline)) Status dd_bracket(Vec3 const &r, Sym3 const &q1_in,
+                                            Sym3 const &q2_in, double hint,
+                                            MethodResult &res) noexcept {
+  double const inf = std::numeric_limits<double>::infinity();
+  DDPoint lo, hi, p;
+  ++res.iterations;
+  if (!dd_point(0.5, r, q1_in, q2_in, hi)) return kNoConvergence;
+  bool const swap = hi.df > 0.0;
+  Sym3 const &q1 = swap ? q2_in : q1_in, &q2 = swap ? q1_in : q2_in;
+  if (swap) hi.df = -hi.df;  // f' of the exchanged problem
+  DDPoint best = hi;
+  ++res.iterations;
+  if (!dd_point(0.0, r, q1, q2, lo)) lo = DDPoint{0.0, 0.0, inf, 0.0, 0.0};
+  DDPoint lo_c = lo, hi_c = hi;
+  // f' at 1/2 within its error: the maximiser may lie on either side.
+  if (std::fabs(hi.df) <= hi.edf) hi_c = DDPoint{1.0, 0.0, -inf, 0.0, 0.0};
+  double upper = inf;  // bound on f*
+  // The first point: the hint, when it lies on the side of the maximiser
+  // (1 - hint is exact for hint >= 1/2).
+  double x = swap ? 1.0 - hint : hint;
+  bool take_x = x > 0.0 && x < 0.5;
+  double width = inf;  // log(hi / lo) before the last step
+  for (int k = 0; k < kDDMaxBracket; ++k) {
+    upper = std::fmin(upper, tangent_bound(lo_c, hi_c));
+    if (upper - best.f <= kDDGapTol * best.f) break;
+    if (!take_x) {
+      // The tangents' intersection, or a bisection when the last step did
+      // not halve log(hi / lo).
+      double const lo_eff = lo.x > 0.0 ? lo.x : 0x1p-1074;
+      double const w = std::log1p((hi.x - lo.x) / lo_eff);
+      bool const bisect = !(w <= 0.5 * width);
+      width = w;
+      double const xt = (hi.f - lo.f + lo.df * lo.x - hi.df * hi.x) / (lo.df - hi.df);
+      x = !bisect && xt > lo.x && xt < hi.x
+              ? xt
+              : (hi.x > 4.0 * lo_eff ? std::sqrt(lo_eff) * std::sqrt(hi.x) : 0.5 * (lo.x + hi.x));
+    }
+    take_x = false;
+    if (!(x > lo.x && x < hi.x)) break;  // no double inside [lo, hi]
+    ++res.iterations;
+    if (!dd_point(x, r, q1, q2, p)) break;
+    if (p.f > best.f) best = p;
+    if (p.df > p.edf && p.x > lo_c.x)
+      lo_c = p;
+    else if (p.df < -p.edf && p.x < hi_c.x)
+      hi_c = p;
+    else if (std::fabs(p.df) <= p.edf)
+      upper = std::fmin(upper, p.f + p.ef + (std::fabs(p.df) + p.edf) *
+                                                std::fmax(p.x - lo_c.x, hi_c.x - p.x));
+    if (p.df > 0.0)
+      lo = p;
+    else
+      hi = p;
+  }
+  upper = std::fmin(upper, tangent_bound(lo_c, hi_c));
+  if (!(best.f > 0.0)) return kNoConvergence;
+  res.mu2 = best.f;
+  res.lambda = swap ? 1.0 - best.x : best.x;
+  res.mu2_error = std::fmax(upper - best.f, 0.0) + best.ef;
+  return res.mu2_error <= kDefaultRelAccuracy * res.mu2 ? kOk : kInaccurate;
 }
 
 // The whole method, inlined into one function per instruction-set level
@@ -242,10 +357,20 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
   if (std::isfinite(e.f)) e.lambda = st.lambda > 0.0 && st.lambda < 1.0 ? st.lambda : e.lambda;
   FEvalDD fd;
   double lambda;
+  // The double f'' as slope, where the double evaluation has digits
+  // (otherwise its f'' can be off by orders of magnitude, and the gap
+  // f'^2 / (2 |f''|) with it).
   double a = std::isfinite(e.f) ? -e.d2f : 0.0;  // -f'' > 0
   bool const have_d3f = std::isfinite(e.f) && std::isfinite(e.d3f);
   double const d3f = have_d3f ? e.d3f : 0.0;
-  if (std::isfinite(e.f) && a > 0.0) {
+  // The first-order error bound of the double f'' below kDDTrustRel of it:
+  // rel_double times the sum of its terms |-2 phi| + |2 p' phi'| +
+  // |p phi''| <= 4 phi + 4 |p' phi'| + a (eq. (M4)).
+  bool const trust_a =
+      std::isfinite(e.f) && a > 0.0 &&
+      rel_double * (4.0 * e.phi + 4.0 * std::fabs((1.0 - 2.0 * e.lambda) * e.dphi) + a) <=
+          kDDTrustRel * a;
+  if (trust_a) {
     lambda = e.lambda;
     for (int k = 0; k < kDDMaxNewton; ++k) {
       ++res.iterations;
@@ -283,38 +408,14 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
       lambda = next;
     }
   }
-  // Fallback: bisection on the sign of the double-double f'.
-  double lo = 0.0, hi = 1.0;
-  lambda = 0.5;
-  bool have = false;
-  FEvalDD best{};
-  double best_lambda = 0.5;
-  for (int k = 0; k < kDDMaxBisect && hi - lo > 4.0 * kU * hi; ++k) {
-    ++res.iterations;
-    lambda = 0.5 * (lo + hi);
-    if (!f_eval_dd(lambda, r, q1, q2, fd)) break;
-    if (!have || fd.f > best.f) {
-      best = fd;
-      best_lambda = lambda;
-      have = true;
-    }
-    if (fd.df > 0.0)
-      lo = lambda;
-    else
-      hi = lambda;
-  }
-  if (!have) {
-    res.mu2 = std::isfinite(e.f) ? st.mu2 : std::nan("");
-    res.lambda = std::isfinite(e.f) ? st.lambda : std::nan("");
-    res.mu2_error = std::isfinite(e.f) ? newton_error(st, r, q1, q2) : std::nan("");
-    return kNoConvergence;
-  }
-  res.mu2 = best.f;
-  res.lambda = best_lambda;
-  // Gap bound (f concave): f* - f(last) <= |f'(last)| (hi - lo), last = the
-  // last bisection point, an end of [lo, hi]; f(best) >= f(last).
-  res.mu2_error = rel_dd * best.f + std::fabs(fd.df) * (hi - lo);
-  return res.mu2_error <= kDefaultRelAccuracy * res.mu2 ? kOk : kInaccurate;
+  // Step 4: the bracketed double-double iteration (dd_bracket).
+  double const hint = std::isfinite(e.f) ? e.lambda : start;
+  Status const s = dd_bracket(r, q1, q2, hint, res);
+  if (s != kNoConvergence) return s;
+  res.mu2 = std::isfinite(e.f) ? st.mu2 : std::nan("");
+  res.lambda = std::isfinite(e.f) ? st.lambda : std::nan("");
+  res.mu2_error = std::isfinite(e.f) ? newton_error(st, r, q1, q2) : std::nan("");
+  return kNoConvergence;
 }
 
 #if PW85_ISA_LEVELS

@@ -13,22 +13,33 @@
 #include <immintrin.h>
 #endif
 #include "common/sym3.hpp"
+#include "eval/f_ldl.hpp"
 
 namespace pw85 {
 
 struct FEvalDD {
-  double f;    // f(lambda), rounded to double
-  double df;   // f'(lambda), rounded to double
-  double phi;  // r^T Q^{-1} r, rounded to double
+  double f;     // f(lambda), rounded to double
+  double df;    // f'(lambda), rounded to double
+  double phi;   // r^T Q^{-1} r, rounded to double
+  double dphi;  // phi' = -s^T D s, rounded to double
+  double rel;   // bound on the relative error of phi (eq. (M6), unit kUdd)
 };
+
+// Unit of the bound (M6) for the double-double solve, in place of u: the
+// operations of arith/dd.hpp err by a few u^2 of their operands, the
+// reciprocal by 8 u^2 (arith/dd.hpp); Q(lambda) is formed within u^2 of its
+// terms.
+constexpr double kUdd = 8.0 * kU * kU;
 
 // Q(lambda) = (1 - lambda) Q1 + lambda Q2 formed as double-doubles,
 // factored as L D L^T and s = Q^{-1} r, phi = r^T s solved in double-double
 // (shared by f_eval_dd_impl and contact_point_dd_impl). Returns false when a
-// pivot is not positive.
+// pivot is not positive. fac, when not null, receives the high parts of L
+// and D (for the bound (M6), phi_error).
 template <bool F>
 PW85_ALWAYS_INLINE bool solve_dd_impl(double lambda, Vec3 const &r, Sym3 const &q1,
-                                      Sym3 const &q2, dd::DD s[kDim], dd::DD &phi) noexcept {
+                                      Sym3 const &q2, dd::DD s[kDim], dd::DD &phi,
+                                      Ldl *fac = nullptr) noexcept {
   using namespace dd;
   DD const om = two_sum(1.0, -lambda);  // 1 - lambda, exactly
   DD q[kSym];
@@ -53,6 +64,7 @@ PW85_ALWAYS_INLINE bool solve_dd_impl(double lambda, Vec3 const &r, Sym3 const &
   if (!(d2.hi > 0.0)) return false;
   DD const id2 = recip<F>(d2);
   DD const l10 = mul<F>(q[1], id0), l20 = mul<F>(q[2], id0), l21 = mul<F>(e, id1);
+  if (fac) *fac = Ldl{l10.hi, l20.hi, l21.hi, q[0].hi, d1.hi, d2.hi, id0.hi, id1.hi, id2.hi};
   // y = L^{-1} r, z = D^{-1} y, s = L^{-T} z with the last row of L^{-T}
   // formed before z2 is known: s0 = z0 - l10 z1 + (l10 l21 - l20) z2.
   DD const y0{r[0], 0.0};
@@ -75,7 +87,8 @@ PW85_ALWAYS_INLINE bool f_eval_dd_impl(double lambda, Vec3 const &r, Sym3 const 
   DD dq[kSym];
   for (int i = 0; i < kSym; ++i) dq[i] = two_sum(q2[i], -q1[i]);  // D = Q2 - Q1, exactly
   DD sv[kDim], phi;
-  if (!solve_dd_impl<F>(lambda, r, q1, q2, sv, phi)) return false;
+  FEval fac;  // L, D and s in double, for the bound phi_error (eq. (M6))
+  if (!solve_dd_impl<F>(lambda, r, q1, q2, sv, phi, &fac.l)) return false;
   DD const s0 = sv[0], s1 = sv[1], s2 = sv[2];
   // s^T D s.
   DD sds = add_sloppy(add_sloppy(mul<F>(dq[0], mul<F>(s0, s0)), mul<F>(dq[3], mul<F>(s1, s1))), mul<F>(dq[5], mul<F>(s2, s2)));
@@ -90,6 +103,10 @@ PW85_ALWAYS_INLINE bool f_eval_dd_impl(double lambda, Vec3 const &r, Sym3 const 
   out.f = to_double(f);
   out.df = to_double(df);
   out.phi = to_double(phi);
+  out.dphi = -to_double(sds);
+  fac.lambda = lambda;
+  fac.s = Vec3{{to_double(s0), to_double(s1), to_double(s2)}};
+  out.rel = phi_error(fac, r, q1, q2) * (kUdd / kU) / out.phi;
   return std::isfinite(out.f) && std::isfinite(out.df);
 }
 
