@@ -1,8 +1,8 @@
 #!/bin/sh
-# Embedding test (docs/usage.md, "Embedding"): the parent project
-# tests/subproject, a debug build with the source tree as its subproject
-# subprojects/pw85 (a symlink, and a wrap file whose [provide] names the
-# dependencies) and -Dpw85:default_library=both. Checks that
+# Embedding test (docs/usage.md, "Embedding in other builds"): the parent
+# project tests/subproject, a debug build with the source tree as its
+# subproject subprojects/pw85 (a symlink, and a wrap file whose [provide]
+# names the dependencies) and -Dpw85:default_library=both. Checks that
 #  - dependency('pw85'), dependency('pw85', static: true),
 #    dependency('pw85_legacy'), dependency('pw85-fortran') resolve with no
 #    variable name, and the programs built with them print the tutorial's
