@@ -1,7 +1,7 @@
 #!/bin/sh
 # Install test: stage `meson install` into a temporary directory, then build
 # the documented examples against the staged files only, the way a user
-# would (pkg-config for C, the installed pw85.mod for Fortran, the installed
+# would (pkg-config for C and Fortran (pw85.pc, pw85-fortran.pc), the installed
 # Python packages with no environment variable), run them and check what
 # they print. Leaves nothing behind.
 #
@@ -75,15 +75,18 @@ cat "$tmp/tutorial.out"
 expect "$tmp/tutorial.out" "mu^2 = 3.36271"
 expect "$tmp/tutorial.out" "lambda = 0.166859"
 
-# Fortran: the example against the installed pw85.mod and libpw85_fortran.a.
+# Fortran: the example against the installed pw85.mod and libpw85_fortran.a,
+# with the flags of the staged pw85-fortran.pc.
 if [ -n "$fc" ]; then
   for f in "$stage$includedir/pw85.mod" "$stage$libdir/libpw85_fortran.a"; do
     [ -f "$f" ] || { echo "FAIL: $f was not installed"; exit 1; }
   done
+  fflags=$(PKG_CONFIG_PATH="$stage$libdir/pkgconfig" \
+    pkg-config --define-variable=prefix="$stage$prefix" --cflags --libs pw85-fortran)
+  echo "pkg-config --cflags --libs pw85-fortran: $fflags"
   # shellcheck disable=SC2086
-  (cd "$tmp" && "$fc" $san_flags -I"$stage$includedir" \
-     "$srcdir/docs/examples/example.f90" \
-     -L"$stage$libdir" -lpw85_fortran -lpw85 -o "$tmp/example_f")
+  (cd "$tmp" && "$fc" $san_flags "$srcdir/docs/examples/example.f90" $fflags \
+     -o "$tmp/example_f")
   LD_LIBRARY_PATH="$stage$libdir" "$tmp/example_f" >"$tmp/example_f.out"
   cat "$tmp/example_f.out"
   expect "$tmp/example_f.out" "mu^2 = 3.36271"
