@@ -179,8 +179,8 @@ PW85_API int pw85_ellipsoid(double const radii[PW85_DIM],
  * column k is body axis k. quat need not be unit: |quat|^2 within 1e-5 of 1
  * (float32 components, six significant digits) is accepted and normalised.
  * Each entry of Q is within u |Q_ij| + 8 u^2 max(radii)^2 of the exact Q of
- * quat / |quat| (u = 2^-53; double-double evaluation; a sphere gives
- * radius^2 I exactly).
+ * quat / |quat| (u = 2^-53; double-double evaluation; entries below DBL_MIN
+ * rounded once more as subnormals; a sphere gives radius^2 I exactly).
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL pointer, NaN or infinite
  * values), PW85_ERR_NOT_SPD (a radius <= 0, or the rounded Q not positive
  * definite), PW85_ERR_NOT_ORTHONORMAL (| |quat|^2 - 1 | > 1e-5, quat = 0
