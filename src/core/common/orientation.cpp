@@ -4,6 +4,7 @@
 
 #include "arith/dd.hpp"
 #include "common/fp.hpp"
+#include "common/isa.hpp"
 #include "common/magnitude.hpp"
 
 namespace pw85 {
@@ -11,13 +12,12 @@ namespace pw85 {
 namespace {
 
 using dd::DD;
-constexpr bool kNoFma = false;  // portable products: same bits on every CPU
 
-DD sq(double a) noexcept { return dd::two_prod<kNoFma>(a, a); }
-DD prod(double a, double b) noexcept { return dd::two_prod<kNoFma>(a, b); }
-DD twice(DD a) noexcept { return DD{2.0 * a.hi, 2.0 * a.lo}; }
-
-}  // namespace
+template <bool F>
+PW85_ALWAYS_INLINE DD sq(double a) noexcept { return dd::two_prod<F>(a, a); }
+template <bool F>
+PW85_ALWAYS_INLINE DD prod(double a, double b) noexcept { return dd::two_prod<F>(a, b); }
+PW85_ALWAYS_INLINE DD twice(DD a) noexcept { return DD{2.0 * a.hi, 2.0 * a.lo}; }
 
 // (O1) The rotation of the quaternion q = (w, x, y, z) (Hamilton product,
 // p -> q p q* / |q|^2, body frame to lab frame) is R = M / |q|^2 with
@@ -30,34 +30,37 @@ DD twice(DD a) noexcept { return DD{2.0 * a.hi, 2.0 * a.lo}; }
 // spheroid one rank-one term. Everything in double-double (error a few
 // u² max_k a_k², absolute) on radii scaled by 2^-e (exact), so each entry is
 // within u |Q_ij| + a few u² max_k a_k² of the exact Q of quat / |quat|.
-Status ellipsoid_quat(Vec3 const &radii, double const quat[4], Sym3 &q) noexcept {
+// F: fused multiply-add in the error-free products (common/isa.hpp); both
+// are exact, so F changes no bit unless a product underflows.
+template <bool F>
+PW85_ALWAYS_INLINE Status quat_body(Vec3 const &radii, double const quat[4], Sym3 &q) noexcept {
   for (int k = 0; k < kDim; ++k)
     if (!(radii[k] > 0.0)) return kNotSpd;
   double const w = quat[0], x = quat[1], y = quat[2], z = quat[3];
-  DD const ww = sq(w), xx = sq(x), yy = sq(y), zz = sq(z);
-  DD const n2 = dd::add(dd::add(ww, xx), dd::add(yy, zz));
+  DD const ww = sq<F>(w), xx = sq<F>(x), yy = sq<F>(y), zz = sq<F>(z);
+  DD const n2 = dd::add_sloppy(dd::add_sloppy(ww, xx), dd::add_sloppy(yy, zz));
   if (!(std::fabs(n2.hi - 1.0) <= kQuatTol)) return kNotOrthonormal;
   for (int k = 0; k < kDim; ++k) {
     double const a2 = radii[k] * radii[k];
     if (!(a2 >= kMinNormal && a2 <= kMaxDouble)) return kRange;
   }
-  DD const xy = prod(x, y), xz = prod(x, z), yz = prod(y, z);
-  DD const wx = prod(w, x), wy = prod(w, y), wz = prod(w, z);
+  DD const xy = prod<F>(x, y), xz = prod<F>(x, z), yz = prod<F>(y, z);
+  DD const wx = prod<F>(w, x), wy = prod<F>(w, y), wz = prod<F>(w, z);
   DD const m[3][3] = {
-      {dd::sub(dd::add(ww, xx), dd::add(yy, zz)), twice(dd::sub(xy, wz)), twice(dd::add(xz, wy))},
-      {twice(dd::add(xy, wz)), dd::sub(dd::add(ww, yy), dd::add(xx, zz)), twice(dd::sub(yz, wx))},
-      {twice(dd::sub(xz, wy)), twice(dd::add(yz, wx)), dd::sub(dd::add(ww, zz), dd::add(xx, yy))}};
+      {dd::sub_sloppy(dd::add_sloppy(ww, xx), dd::add_sloppy(yy, zz)), twice(dd::sub_sloppy(xy, wz)), twice(dd::add_sloppy(xz, wy))},
+      {twice(dd::add_sloppy(xy, wz)), dd::sub_sloppy(dd::add_sloppy(ww, yy), dd::add_sloppy(xx, zz)), twice(dd::sub_sloppy(yz, wx))},
+      {twice(dd::sub_sloppy(xz, wy)), twice(dd::add_sloppy(yz, wx)), dd::sub_sloppy(dd::add_sloppy(ww, zz), dd::add_sloppy(xx, yy))}};
   int const e = max_exponent(radii.x, kDim);
   DD a2[3];
-  for (int k = 0; k < kDim; ++k) a2[k] = sq(std::ldexp(radii[k], -e));
+  for (int k = 0; k < kDim; ++k) a2[k] = sq<F>(std::ldexp(radii[k], -e));
   // Median of the three a_k² (by their leading parts; ties pick any).
   int const lo = a2[0].hi <= a2[1].hi ? 0 : 1, hi = 1 - lo;
   int const med = a2[2].hi <= a2[lo].hi ? lo : (a2[2].hi >= a2[hi].hi ? hi : 2);
   DD const s = a2[med];
   DD d[3];
-  for (int k = 0; k < kDim; ++k) d[k] = dd::sub(a2[k], s);
-  DD const inv = dd::recip<kNoFma>(n2);
-  DD const inv2 = dd::mul<kNoFma>(inv, inv);
+  for (int k = 0; k < kDim; ++k) d[k] = dd::sub_sloppy(a2[k], s);
+  DD const inv = dd::recip<F>(n2);
+  DD const inv2 = dd::mul<F>(inv, inv);
   Sym3 scaled;
   int idx = 0;
   for (int i = 0; i < kDim; ++i) {
@@ -65,16 +68,31 @@ Status ellipsoid_quat(Vec3 const &radii, double const quat[4], Sym3 &q) noexcept
       DD acc{0.0, 0.0};
       for (int k = 0; k < kDim; ++k) {
         if (d[k].hi == 0.0) continue;
-        acc = dd::add(acc, dd::mul<kNoFma>(d[k], dd::mul<kNoFma>(m[i][k], m[j][k])));
+        acc = dd::add_sloppy(acc, dd::mul<F>(d[k], dd::mul<F>(m[i][k], m[j][k])));
       }
-      acc = dd::mul<kNoFma>(acc, inv2);
-      if (i == j) acc = dd::add(acc, s);
+      acc = dd::mul<F>(acc, inv2);
+      if (i == j) acc = dd::add_sloppy(acc, s);
       scaled[idx] = dd::to_double(acc);
     }
   }
   if (!is_positive_definite(scaled)) return kNotSpd;
   for (int i = 0; i < kSym; ++i) q[i] = std::ldexp(scaled[i], 2 * e);
   return kOk;
+}
+
+#if PW85_ISA_FMA
+PW85_TARGET_FMA Status quat_fma(Vec3 const &radii, double const quat[4], Sym3 &q) noexcept {
+  return quat_body<true>(radii, quat, q);
+}
+#endif
+
+}  // namespace
+
+Status ellipsoid_quat(Vec3 const &radii, double const quat[4], Sym3 &q) noexcept {
+#if PW85_ISA_FMA
+  if (isa::has_fma()) return quat_fma(radii, quat, q);
+#endif
+  return quat_body<isa::kStaticFma>(radii, quat, q);
 }
 
 namespace {
