@@ -180,7 +180,9 @@ PW85_API int pw85_ellipsoid(double const radii[PW85_DIM],
  * (float32 components, six significant digits) is accepted and normalised.
  * Each entry of Q is within u |Q_ij| + 8 u^2 max(radii)^2 of the exact Q of
  * quat / |quat| (u = 2^-53; double-double evaluation; entries below DBL_MIN
- * rounded once more as subnormals; a sphere gives radius^2 I exactly).
+ * rounded once more as subnormals; a sphere gives radius^2 I exactly). Same
+ * bits with and without a fused multiply-add (the error-free products are
+ * exact either way), unless a product of components underflows.
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL pointer, NaN or infinite
  * values), PW85_ERR_NOT_SPD (a radius <= 0, or the rounded Q not positive
  * definite), PW85_ERR_NOT_ORTHONORMAL (| |quat|^2 - 1 | > 1e-5, quat = 0
