@@ -381,9 +381,8 @@ static void test_axes_rational(void) {
         }
         double const ang = sqrt((double)(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]));
         worst_v = fmax(worst_v, ang * gap / (U * a2[k][2]));
-        if (!(ang <= 4 * U * a2[k][2] / gap)) {
-          double o; double be = decomposition_error(q, radii, rot, &o);
-          g_error("quad %d a2 %d: axis %d off by %g (backward %g u, orth %g u)", (int)iq, (int)k, l, ang, be / U, o / U);}
+        if (!(ang <= 4 * U * a2[k][2] / gap))
+          g_error("quad %d, a^2 set %d: axis %d off by %g", (int)iq, (int)k, l, ang);
       }
     }
   }
@@ -478,10 +477,11 @@ static void test_bad_input(void) {
   struct {
     const double *r, *qt;
     int status;
-  } const qc[] = {{NULL, unit, PW85_ERR_INVALID_ARGUMENT}, {radii, NULL, PW85_ERR_INVALID_ARGUMENT},
-                  {nan_r, unit, PW85_ERR_INVALID_ARGUMENT}, {radii, inf_q, PW85_ERR_INVALID_ARGUMENT},
-                  {neg_r, unit, PW85_ERR_NOT_SPD},         {radii, zero, PW85_ERR_NOT_ORTHONORMAL},
-                  {radii, off, PW85_ERR_NOT_ORTHONORMAL},  {huge_r, unit, PW85_ERR_RANGE}};
+  } const qc[] = {
+      {NULL, unit, PW85_ERR_INVALID_ARGUMENT},  {radii, NULL, PW85_ERR_INVALID_ARGUMENT},
+      {nan_r, unit, PW85_ERR_INVALID_ARGUMENT}, {radii, inf_q, PW85_ERR_INVALID_ARGUMENT},
+      {neg_r, unit, PW85_ERR_NOT_SPD},          {radii, zero, PW85_ERR_NOT_ORTHONORMAL},
+      {radii, off, PW85_ERR_NOT_ORTHONORMAL},   {huge_r, unit, PW85_ERR_RANGE}};
   for (size_t k = 0; k < G_N_ELEMENTS(qc); k++) {
     double q[6] = {1, 2, 3, 4, 5, 6};
     g_assert_cmpint(pw85_ellipsoid_quat(qc[k].r, qc[k].qt, q), ==, qc[k].status);

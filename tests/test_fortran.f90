@@ -94,7 +94,8 @@ program test_fortran
   quat = [sqrt(0.5_c_double), 0.0_c_double, 0.0_c_double, sqrt(0.5_c_double)]
   status = pw85_ellipsoid_quat(radii, quat, q)
   call check(status == PW85_OK .and. maxval(abs(q - [1.0_c_double, 0.0_c_double, &
-             0.0_c_double, 9.0_c_double, 0.0_c_double, 1.0_c_double])) <= 36 * epsilon(1.0_c_double), &
+             0.0_c_double, 9.0_c_double, 0.0_c_double, 1.0_c_double])) &
+             <= 36 * epsilon(1.0_c_double), &
              'pw85_ellipsoid_quat: body x axis to lab y axis')
   rmat = reshape([0.0_c_double, 1.0_c_double, 0.0_c_double, -1.0_c_double, 0.0_c_double, &
                   0.0_c_double, 0.0_c_double, 0.0_c_double, 1.0_c_double], [3, 3])
@@ -105,8 +106,10 @@ program test_fortran
   call check(status == PW85_OK .and. maxval(abs(qr - q)) <= 36 * epsilon(1.0_c_double), &
              'pw85_ellipsoid: the Fortran R of axis columns as axes')
   status = pw85_ellipsoid_axes(q, ra, rot, quat)
-  call check(status == PW85_OK .and. maxval(abs(ra - [1.0_c_double, 1.0_c_double, 3.0_c_double])) &
-             <= 8 * epsilon(1.0_c_double) .and. abs(abs(rot(3, 2)) - 1.0_c_double) <= 8 * epsilon(1.0_c_double) &
+  call check(status == PW85_OK .and. &
+             maxval(abs(ra - [1.0_c_double, 1.0_c_double, 3.0_c_double])) &
+             <= 8 * epsilon(1.0_c_double) &
+             .and. abs(abs(rot(3, 2)) - 1.0_c_double) <= 8 * epsilon(1.0_c_double) &
              .and. quat(1) >= 0.0_c_double, &
              'pw85_ellipsoid_axes: semi-axes ascending, long axis rot(3, :) along y')
   status = pw85_ellipsoid_axes(q, ra)

@@ -46,10 +46,12 @@ PW85_ALWAYS_INLINE Status quat_body(Vec3 const &radii, double const quat[4], Sym
   }
   DD const xy = prod<F>(x, y), xz = prod<F>(x, z), yz = prod<F>(y, z);
   DD const wx = prod<F>(w, x), wy = prod<F>(w, y), wz = prod<F>(w, z);
+  auto const sum = [](DD a, DD b) { return dd::add_sloppy(a, b); };
+  auto const dif = [](DD a, DD b) { return dd::sub_sloppy(a, b); };
   DD const m[3][3] = {
-      {dd::sub_sloppy(dd::add_sloppy(ww, xx), dd::add_sloppy(yy, zz)), twice(dd::sub_sloppy(xy, wz)), twice(dd::add_sloppy(xz, wy))},
-      {twice(dd::add_sloppy(xy, wz)), dd::sub_sloppy(dd::add_sloppy(ww, yy), dd::add_sloppy(xx, zz)), twice(dd::sub_sloppy(yz, wx))},
-      {twice(dd::sub_sloppy(xz, wy)), twice(dd::add_sloppy(yz, wx)), dd::sub_sloppy(dd::add_sloppy(ww, zz), dd::add_sloppy(xx, yy))}};
+      {dif(sum(ww, xx), sum(yy, zz)), twice(dif(xy, wz)), twice(sum(xz, wy))},
+      {twice(sum(xy, wz)), dif(sum(ww, yy), sum(xx, zz)), twice(dif(yz, wx))},
+      {twice(dif(xz, wy)), twice(sum(yz, wx)), dif(sum(ww, zz), sum(xx, yy))}};
   int const e = max_exponent(radii.x, kDim);
   DD a2[3];
   for (int k = 0; k < kDim; ++k) a2[k] = sq<F>(std::ldexp(radii[k], -e));
@@ -160,7 +162,8 @@ void quaternion_of(double const r[3][3], double out[4]) noexcept {
     x = (r[0][2] + r[2][0]) * f;
     y = (r[1][2] + r[2][1]) * f;
   }
-  bool const flip = w < 0.0 || (w == 0.0 && (x < 0.0 || (x == 0.0 && (y < 0.0 || (y == 0.0 && z < 0.0)))));
+  bool const flip =
+      w < 0.0 || (w == 0.0 && (x < 0.0 || (x == 0.0 && (y < 0.0 || (y == 0.0 && z < 0.0)))));
   double const n = (flip ? -1.0 : 1.0) / std::sqrt(w * w + x * x + y * y + z * z);
   out[0] = w * n;
   out[1] = x * n;
@@ -195,7 +198,8 @@ Status ellipsoid_axes(Sym3 const &q, Vec3 &radii, double rot[9], double quat[4])
     for (auto const &pl : kPlanes) {
       int const p = pl[0], r = pl[1];
       if (a[p][r] == 0.0) continue;
-      if (std::fabs(a[p][r]) <= kU * std::sqrt(std::fabs(a[p][p])) * std::sqrt(std::fabs(a[r][r]))) {
+      double const scale = std::sqrt(std::fabs(a[p][p])) * std::sqrt(std::fabs(a[r][r]));
+      if (std::fabs(a[p][r]) <= kU * scale) {
         a[p][r] = a[r][p] = 0.0;
         continue;
       }
