@@ -1,5 +1,6 @@
 /* ns per call of the functions the benchmarks do not time: the constructors
- * pw85_spheroid and pw85_ellipsoid, and the legacy contact functions of
+ * pw85_spheroid, pw85_ellipsoid, pw85_ellipsoid_quat, pw85_ellipsoid_rotation
+ * and the inverse pw85_ellipsoid_axes, and the legacy contact functions of
  * libpw85_legacy next to pw85_contact_function, per class of /contact
  * (docs/guide.md, docs/legacy.md). Thread CPU time of a pass over the 5000
  * pairs of a class, minimum over 7 passes.
@@ -54,10 +55,10 @@ int main(int argc, char **argv) {
 
   /* Constructors: random unit axes, semi-axes in [0.5, 2]. */
   enum { M = 100000 };
-  double *in = malloc(sizeof(double) * 12 * M);
+  double *in = malloc(sizeof(double) * 16 * M), *qs = malloc(sizeof(double) * 6 * M);
   srand(1);
   for (int i = 0; i < M; i++) {
-    double *p = in + 12 * i;
+    double *p = in + 16 * i;
     for (int k = 0; k < 3; k++) p[k] = 0.5 + 1.5 * rand() / (double)RAND_MAX;
     double w = rand() / (double)RAND_MAX - .5, x = rand() / (double)RAND_MAX - .5,
            y = rand() / (double)RAND_MAX - .5, z = rand() / (double)RAND_MAX - .5;
@@ -67,12 +68,14 @@ int main(int argc, char **argv) {
                    2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
                    2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)};
     for (int k = 0; k < 9; k++) p[3 + k] = R[k];
+    p[12] = w, p[13] = x, p[14] = y, p[15] = z;
+    pw85_ellipsoid(p, p + 3, qs + 6 * i);
   }
-  double best_s = 1e30, best_e = 1e30;
+  double best_s = 1e30, best_e = 1e30, best_q = 1e30, best_r = 1e30, best_a = 1e30;
   for (int rep = 0; rep < 7; rep++) {
     double q[6], t0 = now();
     for (int i = 0; i < M; i++) {
-      double const *p = in + 12 * i;
+      double const *p = in + 16 * i;
       pw85_spheroid(p[0], p[1], p + 3, q);
       sink += q[0];
     }
@@ -80,14 +83,40 @@ int main(int argc, char **argv) {
     if (t < best_s) best_s = t;
     t0 = now();
     for (int i = 0; i < M; i++) {
-      double const *p = in + 12 * i;
+      double const *p = in + 16 * i;
       sink += pw85_ellipsoid(p, p + 3, q);
       sink += q[0];
     }
     t = (now() - t0) / M * 1e9;
     if (t < best_e) best_e = t;
+    t0 = now();
+    for (int i = 0; i < M; i++) {
+      double const *p = in + 16 * i;
+      sink += pw85_ellipsoid_quat(p, p + 12, q);
+      sink += q[0];
+    }
+    t = (now() - t0) / M * 1e9;
+    if (t < best_q) best_q = t;
+    t0 = now();
+    for (int i = 0; i < M; i++) {
+      double const *p = in + 16 * i;
+      sink += pw85_ellipsoid_rotation(p, p + 3, q);
+      sink += q[0];
+    }
+    t = (now() - t0) / M * 1e9;
+    if (t < best_r) best_r = t;
+    t0 = now();
+    for (int i = 0; i < M; i++) {
+      double radii[3], rot[9], quat[4];
+      sink += pw85_ellipsoid_axes(qs + 6 * i, radii, rot, quat);
+      sink += radii[0] + rot[0] + quat[0];
+    }
+    t = (now() - t0) / M * 1e9;
+    if (t < best_a) best_a = t;
   }
   printf("pw85_spheroid: %.1f ns/call\npw85_ellipsoid: %.1f ns/call\n", best_s, best_e);
+  printf("pw85_ellipsoid_quat: %.1f ns/call\npw85_ellipsoid_rotation: %.1f ns/call\n"
+         "pw85_ellipsoid_axes: %.1f ns/call\n", best_q, best_r, best_a);
 
   struct { char const *name; contact_fn fn; } fns[] = {
       {"pw85_contact_function", pw85_10},

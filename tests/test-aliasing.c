@@ -68,6 +68,38 @@ static void test_constructors(void) {
   assert_same_bits(q, r6, 6);
 }
 
+static void test_orientation(void) {
+  double const radii[3] = {1.0, 2.0, 3.0}, quat[4] = {0.5, 0.5, -0.5, 0.5};
+  double const rot[9] = {0.6, 0.0, -0.8, 0.0, 1.0, 0.0, 0.8, 0.0, 0.6};
+  double q[6];
+  buffer b;
+  g_assert_cmpint(pw85_ellipsoid_quat(radii, quat, q), ==, PW85_OK);
+  memcpy(b.d, quat, sizeof quat);
+  g_assert_cmpint(pw85_ellipsoid_quat(radii, b.d, b.d), ==, PW85_OK); /* q over quat */
+  assert_same_bits(q, b.d, 6);
+  memcpy(b.d, radii, sizeof radii);
+  g_assert_cmpint(pw85_ellipsoid_quat(b.d, quat, b.d), ==, PW85_OK); /* q over radii */
+  assert_same_bits(q, b.d, 6);
+
+  g_assert_cmpint(pw85_ellipsoid_rotation(radii, rot, q), ==, PW85_OK);
+  memcpy(b.d, rot, sizeof rot);
+  g_assert_cmpint(pw85_ellipsoid_rotation(radii, b.d, b.d), ==, PW85_OK); /* q over rot */
+  assert_same_bits(q, b.d, 6);
+
+  double r[3], ro[9], qt[4];
+  g_assert_cmpint(pw85_ellipsoid_axes(Q1, r, ro, qt), ==, PW85_OK);
+  double r2[3], qt2[4];
+  memcpy(b.d, Q1, sizeof Q1);
+  g_assert_cmpint(pw85_ellipsoid_axes(b.d, r2, b.d, qt2), ==, PW85_OK); /* rot over q */
+  assert_same_bits(ro, b.d, 9);
+  assert_same_bits(r, r2, 3);
+  assert_same_bits(qt, qt2, 4);
+  memcpy(b.d, Q1, sizeof Q1);
+  g_assert_cmpint(pw85_ellipsoid_axes(b.d, b.d, NULL, b.d + 3), ==, PW85_OK); /* radii, quat over q */
+  assert_same_bits(r, b.d, 3);
+  assert_same_bits(qt, b.d + 3, 4);
+}
+
 static void test_residual(void) {
   double out[3];
   buffer b;
@@ -206,6 +238,7 @@ int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   g_test_add_func("/aliasing/pw85__cholesky", test_cholesky);
   g_test_add_func("/aliasing/constructors", test_constructors);
+  g_test_add_func("/aliasing/orientation", test_orientation);
   g_test_add_func("/aliasing/pw85__residual", test_residual);
   g_test_add_func("/aliasing/pw85_contact_function", test_contact_function);
   g_test_add_func("/aliasing/pw85_contact_function_method", test_contact_function_method);

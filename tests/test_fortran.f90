@@ -29,10 +29,11 @@ program test_fortran
   type(pw85_contact_t) :: contacts(2)
   type(pw85_derivatives_t) :: deriv, derivs(2)
   real(c_double) :: hr(3)
+  real(c_double) :: quat(4), rot(3, 3), rmat(3, 3), qr(6), ra(3)
   character(len=:), allocatable :: version, message_ok, message_spd
 
   write (*, '(a)') 'TAP version 13'
-  write (*, '(a)') '1..22'
+  write (*, '(a)') '1..28'
 
   ! Version: the loaded library and the module constant agree.
   version = pw85_version_string()
@@ -85,6 +86,39 @@ program test_fortran
   status = pw85_ellipsoid(radii, axes, q)
   call check(status == PW85_ERR_NOT_ORTHONORMAL .and. all(ieee_is_nan(q)), &
              'pw85_ellipsoid: non-orthonormal axes give PW85_ERR_NOT_ORTHONORMAL')
+
+  ! Orientations: the HOOMD-blue quaternion (cos 45, 0, 0, sin 45) turns the
+  ! body x axis into the lab y axis: semi-axes (3, 1, 1) give diag(1, 9, 1).
+  ! rmat has the body axes as columns (Fortran order).
+  radii = [3.0_c_double, 1.0_c_double, 1.0_c_double]
+  quat = [sqrt(0.5_c_double), 0.0_c_double, 0.0_c_double, sqrt(0.5_c_double)]
+  status = pw85_ellipsoid_quat(radii, quat, q)
+  call check(status == PW85_OK .and. maxval(abs(q - [1.0_c_double, 0.0_c_double, &
+             0.0_c_double, 9.0_c_double, 0.0_c_double, 1.0_c_double])) &
+             <= 36 * epsilon(1.0_c_double), &
+             'pw85_ellipsoid_quat: body x axis to lab y axis')
+  rmat = reshape([0.0_c_double, 1.0_c_double, 0.0_c_double, -1.0_c_double, 0.0_c_double, &
+                  0.0_c_double, 0.0_c_double, 0.0_c_double, 1.0_c_double], [3, 3])
+  status = pw85_ellipsoid_rotation(radii, transpose(rmat), qr)
+  call check(status == PW85_OK .and. maxval(abs(qr - q)) <= 36 * epsilon(1.0_c_double), &
+             'pw85_ellipsoid_rotation: transpose of the Fortran R of axis columns')
+  status = pw85_ellipsoid(radii, rmat, qr)
+  call check(status == PW85_OK .and. maxval(abs(qr - q)) <= 36 * epsilon(1.0_c_double), &
+             'pw85_ellipsoid: the Fortran R of axis columns as axes')
+  status = pw85_ellipsoid_axes(q, ra, rot, quat)
+  call check(status == PW85_OK .and. &
+             maxval(abs(ra - [1.0_c_double, 1.0_c_double, 3.0_c_double])) &
+             <= 8 * epsilon(1.0_c_double) &
+             .and. abs(abs(rot(3, 2)) - 1.0_c_double) <= 8 * epsilon(1.0_c_double) &
+             .and. quat(1) >= 0.0_c_double, &
+             'pw85_ellipsoid_axes: semi-axes ascending, long axis rot(3, :) along y')
+  status = pw85_ellipsoid_axes(q, ra)
+  call check(status == PW85_OK .and. abs(ra(3) - 3.0_c_double) <= 8 * epsilon(1.0_c_double), &
+             'pw85_ellipsoid_axes: rot and quat omitted')
+  quat = 0.0_c_double
+  status = pw85_ellipsoid_quat(radii, quat, q)
+  call check(status == PW85_ERR_NOT_ORTHONORMAL .and. all(ieee_is_nan(q)), &
+             'pw85_ellipsoid_quat: zero quaternion gives PW85_ERR_NOT_ORTHONORMAL')
 
   ! NaN in r12: PW85_ERR_INVALID_ARGUMENT, out NaN-filled.
   r12(2) = ieee_value(r12(2), ieee_quiet_nan)

@@ -217,42 +217,121 @@ def spheroid(a, c, n):
     return q
 
 
-def ellipsoid(radii, axes):
-    """Quadratic form of ellipsoids: semi-axes radii (..., 3), unit axes in
-    the rows of axes (..., 3, 3); returns shape (..., 6). pw85.Error naming
-    the argument on failure (a radius not finite and > 0: radii; axes not
-    orthonormal to 1e-10 or not finite: axes)."""
-    r = _arr(radii, "radii", 3)
-    ax = _arr(axes, "axes", 3)
-    if ax.ndim < 2 or ax.shape[-2] != 3:
-        raise ValueError(f"axes: expected shape (..., 3, 3), got {ax.shape}")
-    batch, (r, ax) = _broadcast(("radii", "axes"), [r, ax], [(3,), (3, 3)])
+def _matrices(x, name):
+    a = _arr(x, name, 3)
+    if a.ndim < 2 or a.shape[-2] != 3:
+        raise ValueError(f"{name}: expected shape (..., 3, 3), got {a.shape}")
+    return a
+
+
+def _build_q(func, f, radii, other, oname, otail, reason):
+    """Q (..., 6) by the C constructor f(radii, other, q) over the broadcast
+    batch of radii (..., 3) and other (... + otail); pw85.Error naming the
+    argument of the first failure (reason(s, radii row, other row) for the
+    statuses beyond a non-finite value or a radius <= 0)."""
+    batch, (r, o) = _broadcast(("radii", oname), [radii, other], [(3,), otail])
     q = np.empty(batch + (6,))
     m = _size(batch)
     st = np.zeros(batch, np.intc)
     sf = st.reshape(-1)
-    pr, pa, pq = r.ctypes.data, ax.ctypes.data, q.ctypes.data
-    f = lib.pw85_ellipsoid
+    pr, po, pq = r.ctypes.data, o.ctypes.data, q.ctypes.data
+    so = 8 * math.prod(otail)
     ret = 0
     for k in range(m):
-        s = f(pr + 24 * k, pa + 72 * k, pq + 48 * k)
+        s = f(pr + 24 * k, po + so * k, pq + 48 * k)
         if s:
             sf[k] = s
             ret = ret or s
     if ret:
         def rows_of(k, s):
-            rk, ak = r.reshape(-1, 3)[k], ax.reshape(-1, 9)[k]
+            rk, ok = r.reshape(-1, 3)[k], o.reshape(-1, so // 8)[k]
             if not np.all(np.isfinite(rk)):
                 return f"radii holds a non-finite value {rk.tolist()}"
-            if not np.all(np.isfinite(ak)):
-                return f"axes holds a non-finite value {ak.tolist()}"
-            if s == Status.ERR_NOT_SPD:
+            if not np.all(np.isfinite(ok)):
+                return f"{oname} holds a non-finite value {ok.tolist()}"
+            if s == Status.ERR_NOT_SPD and not np.all(rk > 0):
                 return f"radii = {rk.tolist()}: a radius is <= 0"
-            if s == Status.ERR_NOT_ORTHONORMAL:
-                return "axes are not orthonormal to 1e-10"
-            return None
-        _raise("ellipsoid", ret, st, rows_of, batch)
+            return reason(s, rk, ok)
+        _raise(func, ret, st, rows_of, batch)
     return q
+
+
+def _range_reason(s, rk):
+    if s == Status.ERR_RANGE:
+        return f"radii = {rk.tolist()}: a radius^2 outside [DBL_MIN, DBL_MAX]"
+    return None
+
+
+def ellipsoid(radii, axes):
+    """Quadratic form of ellipsoids: semi-axes radii (..., 3), unit axes in
+    the rows of axes (..., 3, 3); returns shape (..., 6). pw85.Error naming
+    the argument on failure (a radius not finite and > 0: radii; axes not
+    orthonormal to 1e-10 or not finite: axes)."""
+    def reason(s, rk, ok):
+        if s == Status.ERR_NOT_ORTHONORMAL:
+            return "axes are not orthonormal to 1e-10"
+        return _range_reason(s, rk)
+    return _build_q("ellipsoid", lib.pw85_ellipsoid, _arr(radii, "radii", 3),
+                    _matrices(axes, "axes"), "axes", (3, 3), reason)
+
+
+def ellipsoid_rotation(radii, rot):
+    """Quadratic form of ellipsoids: semi-axes radii (..., 3), rotation
+    matrices rot (..., 3, 3) whose COLUMNS are the body axes (R mapping body
+    to lab frame; pw85.ellipsoid takes the rows); Q = R diag(radii^2) R^T,
+    shape (..., 6). pw85.Error naming the argument on failure (rot not
+    orthonormal to 1e-10; a reflection is accepted)."""
+    def reason(s, rk, ok):
+        if s == Status.ERR_NOT_ORTHONORMAL:
+            return "rot is not orthonormal to 1e-10"
+        return _range_reason(s, rk)
+    return _build_q("ellipsoid_rotation", lib.pw85_ellipsoid_rotation,
+                    _arr(radii, "radii", 3), _matrices(rot, "rot"), "rot", (3, 3), reason)
+
+
+def ellipsoid_quat(radii, quat):
+    """Quadratic form of ellipsoids: semi-axes radii (..., 3) rotated by the
+    quaternions quat (..., 4) = (w, x, y, z) (HOOMD-blue, GSD, LAMMPS order;
+    body to lab frame). |quat|^2 within 1e-5 of 1 is accepted and normalised
+    (float32 quaternions as read from a GSD file); returns shape (..., 6).
+    LAMMPS shape (diameters): radii = shape / 2. OVITO's (x, y, z, w):
+    quat[..., [3, 0, 1, 2]]. pw85.Error naming the argument on failure."""
+    def reason(s, rk, ok):
+        if s == Status.ERR_NOT_ORTHONORMAL:
+            return f"quat = {ok.tolist()}: |quat|^2 = {float(ok @ ok)!r} not within 1e-5 of 1"
+        if s == Status.ERR_NOT_SPD:
+            return f"radii = {rk.tolist()}: Q not positive definite once rounded"
+        return _range_reason(s, rk)
+    return _build_q("ellipsoid_quat", lib.pw85_ellipsoid_quat, _arr(radii, "radii", 3),
+                    _arr(quat, "quat", 4), "quat", (4,), reason)
+
+
+def ellipsoid_axes(q):
+    """Semi-axes and orientations of ellipsoids of quadratic forms q (..., 6):
+    returns (radii (..., 3) ascending, rot (..., 3, 3) proper rotations whose
+    column k is the axis of radii[..., k], quat (..., 4) = (w, x, y, z) with
+    w >= 0), so that pw85.ellipsoid_quat(radii, quat) and
+    pw85.ellipsoid_rotation(radii, rot) give q back. pw85.Error naming the
+    first failing q (not finite, not positive definite)."""
+    qq = _arr(q, "q", 6)
+    batch = qq.shape[:-1]
+    m = _size(batch)
+    radii = np.empty(batch + (3,))
+    rot = np.empty(batch + (3, 3))
+    quat = np.empty(batch + (4,))
+    st = np.zeros(batch, np.intc)
+    sf = st.reshape(-1)
+    pq, pr, pm, pu = qq.ctypes.data, radii.ctypes.data, rot.ctypes.data, quat.ctypes.data
+    f = lib.pw85_ellipsoid_axes
+    ret = 0
+    for k in range(m):
+        s = f(pq + 48 * k, pr + 24 * k, pm + 72 * k, pu + 32 * k)
+        if s:
+            sf[k] = s
+            ret = ret or s
+    if ret:
+        _raise("ellipsoid_axes", ret, st, _rows(q=qq), batch)
+    return radii, rot, quat
 
 
 # ---- contact function, overlap, contact geometry over per-pair arrays ------

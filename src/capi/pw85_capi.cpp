@@ -66,7 +66,7 @@ const char *pw85_strerror(int status) {
     case PW85_ERR_NO_CONVERGENCE:
       return "iteration did not converge to the requested accuracy";
     case PW85_ERR_NOT_ORTHONORMAL:
-      return "axes are not orthonormal";
+      return "axes not orthonormal or quaternion not unit";
     case PW85_ERR_UNKNOWN_METHOD:
       return "unknown method";
     case PW85_ERR_INACCURATE:

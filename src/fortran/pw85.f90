@@ -137,6 +137,41 @@ module pw85
       integer(c_int) :: status
     end function pw85_ellipsoid
 
+    ! int pw85_ellipsoid_quat(double const radii[3], double const quat[4], double q[6])
+    ! quat = (w, x, y, z), rotating body frame to lab frame (HOOMD-blue,
+    ! GSD, LAMMPS order), |quat|^2 within 1e-5 of 1.
+    function pw85_ellipsoid_quat(radii, quat, q) bind(C, name="pw85_ellipsoid_quat") &
+        result(status)
+      import :: c_double, c_int
+      real(c_double), intent(in) :: radii(3), quat(4)
+      real(c_double), intent(out) :: q(6)
+      integer(c_int) :: status
+    end function pw85_ellipsoid_quat
+
+    ! int pw85_ellipsoid_rotation(double const radii[3], double const rot[9], double q[6])
+    ! The C row-major R read column-major: rot(k, :) is body axis k, so rot
+    ! is the transpose of the R whose columns are the axes. For such an R in
+    ! Fortran: pw85_ellipsoid(radii, R, q), or this call with transpose(R).
+    function pw85_ellipsoid_rotation(radii, rot, q) bind(C, name="pw85_ellipsoid_rotation") &
+        result(status)
+      import :: c_double, c_int
+      real(c_double), intent(in) :: radii(3), rot(3, 3)
+      real(c_double), intent(out) :: q(6)
+      integer(c_int) :: status
+    end function pw85_ellipsoid_rotation
+
+    ! int pw85_ellipsoid_axes(double const q[6], double radii[3], double rot[9], double quat[4])
+    ! radii ascending; rot(k, :) is the unit axis of radii(k) (the C R read
+    ! column-major, as in pw85_ellipsoid_rotation); rot and quat optional.
+    function pw85_ellipsoid_axes(q, radii, rot, quat) bind(C, name="pw85_ellipsoid_axes") &
+        result(status)
+      import :: c_double, c_int
+      real(c_double), intent(in) :: q(6)
+      real(c_double), intent(out) :: radii(3)
+      real(c_double), intent(out), optional :: rot(3, 3), quat(4)
+      integer(c_int) :: status
+    end function pw85_ellipsoid_axes
+
     ! double pw85_f_neg(double lambda, double const *params), params = r12, q1, q2
     function pw85_f_neg(lambda, params) bind(C, name="pw85_f_neg") result(f)
       import :: c_double

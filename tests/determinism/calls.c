@@ -215,6 +215,20 @@ void call_all(test_input const *in, test_sink *s) {
   s->put(s, "pw85_spheroid", 0, out, 6);
   int st = pw85_ellipsoid(in->radii, in->axes, out);
   s->put(s, "pw85_ellipsoid", st, out, 6);
+  st = pw85_ellipsoid_rotation(in->radii, in->axes, out);
+  s->put(s, "pw85_ellipsoid_rotation", st, out, 6);
+  {
+    /* a quaternion from the rotation's entries, unit up to rounding */
+    double const *a = in->axes, nq = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2] + a[3] * a[3]);
+    double const quat[4] = {a[0] / nq, a[1] / nq, a[2] / nq, a[3] / nq};
+    st = pw85_ellipsoid_quat(in->radii, quat, out);
+    s->put(s, "pw85_ellipsoid_quat", st, out, 6);
+    double radii[3], rot[9], qt[4];
+    st = pw85_ellipsoid_axes(q1, radii, rot, qt);
+    s->put(s, "pw85_ellipsoid_axes", st, radii, 3);
+    s->put(s, "pw85_ellipsoid_axes/rot", st, rot, 9);
+    s->put(s, "pw85_ellipsoid_axes/quat", st, qt, 4);
+  }
 
   double params[15];
   memcpy(params, r, 3 * sizeof(double));

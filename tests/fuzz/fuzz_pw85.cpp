@@ -277,6 +277,31 @@ void check_one_pair(double const *r, double const *q1, double const *q2, int met
     CHECK(kStatus, in_list(s, {PW85_OK, PW85_ERR_INVALID_ARGUMENT, PW85_ERR_NOT_SPD,
                                PW85_ERR_NOT_ORTHONORMAL, PW85_ERR_RANGE}), "pw85_ellipsoid", s);
     if (s != PW85_OK) CHECK(kNan, all_nan(q, 6), "pw85_ellipsoid", s);
+    int const sr = pw85_ellipsoid_rotation(r, axes, q);
+    int const sr2 = pw85_ellipsoid_rotation(r, axes, qq);
+    CHECK(kDeterminism, sr == sr2 && same_bits(q, qq, sizeof q), "pw85_ellipsoid_rotation", sr);
+    CHECK(kStatus, in_list(sr, {PW85_OK, PW85_ERR_INVALID_ARGUMENT, PW85_ERR_NOT_SPD,
+                                PW85_ERR_NOT_ORTHONORMAL, PW85_ERR_RANGE}),
+          "pw85_ellipsoid_rotation", sr);
+    if (sr != PW85_OK) CHECK(kNan, all_nan(q, 6), "pw85_ellipsoid_rotation", sr);
+    int const sq = pw85_ellipsoid_quat(r, q2, q);
+    int const sq2 = pw85_ellipsoid_quat(r, q2, qq);
+    CHECK(kDeterminism, sq == sq2 && same_bits(q, qq, sizeof q), "pw85_ellipsoid_quat", sq);
+    CHECK(kStatus, in_list(sq, {PW85_OK, PW85_ERR_INVALID_ARGUMENT, PW85_ERR_NOT_SPD,
+                                PW85_ERR_NOT_ORTHONORMAL, PW85_ERR_RANGE}),
+          "pw85_ellipsoid_quat", sq);
+    if (sq != PW85_OK) CHECK(kNan, all_nan(q, 6), "pw85_ellipsoid_quat", sq);
+    double ra[3], ra2[3], ro[9], ro2[9], qu[4], qu2[4];
+    int const sa = pw85_ellipsoid_axes(q1, ra, ro, qu);
+    int const sa2 = pw85_ellipsoid_axes(q1, ra2, ro2, qu2);
+    CHECK(kDeterminism, sa == sa2 && same_bits(ra, ra2, sizeof ra) &&
+          same_bits(ro, ro2, sizeof ro) && same_bits(qu, qu2, sizeof qu), "pw85_ellipsoid_axes", sa);
+    CHECK(kStatus, in_list(sa, {PW85_OK, PW85_ERR_INVALID_ARGUMENT, PW85_ERR_NOT_SPD,
+                                PW85_ERR_NO_CONVERGENCE}), "pw85_ellipsoid_axes", sa);
+    if (sa != PW85_OK && sa != PW85_ERR_NO_CONVERGENCE)
+      CHECK(kNan, all_nan(ra, 3) && all_nan(ro, 9) && all_nan(qu, 4), "pw85_ellipsoid_axes", sa);
+    if (sa == PW85_OK)
+      CHECK(kStatus, ra[0] <= ra[1] && ra[1] <= ra[2] && qu[0] >= 0.0, "pw85_ellipsoid_axes", sa);
     CHECK(kStatus, pw85_strerror(method) != nullptr, "pw85_strerror", method);
   }
 

@@ -14,8 +14,8 @@
 //
 // The variants that exist:
 //  - PW85_ISA_FMA: the double-double kernels with a fused multiply-add in
-//    their error-free products (eval/dd_kernels.cpp, overlap/overlap_dd.cpp;
-//    x86 with GCC or Clang);
+//    their error-free products (eval/dd_kernels.cpp, overlap/overlap_dd.cpp,
+//    common/orientation.cpp; x86 with GCC or Clang);
 //  - PW85_ISA_LEVELS: code compiled for x86-64-v3 (AVX2) and x86-64-v4
 //    (AVX-512): the filters of pw85_overlap (overlap/overlap.cpp), DEFAULT's
 //    rational step and general method (contact/default.cpp) and the entry of
