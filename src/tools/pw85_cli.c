@@ -72,27 +72,17 @@ static void print_matrix(const char *name, const double q[PW85_SYM]) {
   printf("%s = [%g, %g, %g, %g, %g, %g]\n", name, q[0], q[1], q[2], q[3], q[4], q[5]);
 }
 
-/* Quadratic form Q = R diag(radii^2) R^T of an ellipsoid with semi-axes
- * radii along the body axes, R the rotation of the quaternion
- * (w, x, y, z) / |(w, x, y, z)| (HOOMD-blue/GSD order):
- *   R = [[1 - 2(y^2 + z^2), 2(xy - wz), 2(xz + wy)],
- *        [2(xy + wz), 1 - 2(x^2 + z^2), 2(yz - wx)],
- *        [2(xz - wy), 2(yz + wx), 1 - 2(x^2 + y^2)]].
- * The body axes are the columns of R, the rows that pw85_ellipsoid takes.
+/* Quadratic form of an ellipsoid with semi-axes radii along the body axes
+ * and orientation the quaternion (w, x, y, z) (HOOMD-blue/GSD order) of any
+ * non-zero length: divided by its length here, then pw85_ellipsoid_quat.
  * Returns PW85_ERR_INVALID_ARGUMENT for a zero or non-finite quaternion,
- * otherwise the status of pw85_ellipsoid. */
+ * otherwise the status of pw85_ellipsoid_quat. */
 static int ellipsoid_from_quaternion(const double radii[3], const double quat[4], double q[6]) {
   double const norm = sqrt(quat[0] * quat[0] + quat[1] * quat[1] + quat[2] * quat[2] +
                            quat[3] * quat[3]);
   if (!(norm > 0.0) || !isfinite(norm)) return PW85_ERR_INVALID_ARGUMENT;
-  double const w = quat[0] / norm, x = quat[1] / norm, y = quat[2] / norm, z = quat[3] / norm;
-  double const rot[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),
-                         2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
-                         2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)};
-  double axes[9];
-  for (int i = 0; i < 3; i++)
-    for (int k = 0; k < 3; k++) axes[3 * i + k] = rot[3 * k + i];
-  return pw85_ellipsoid(radii, axes, q);
+  double const unit[4] = {quat[0] / norm, quat[1] / norm, quat[2] / norm, quat[3] / norm};
+  return pw85_ellipsoid_quat(radii, unit, q);
 }
 
 /* Splits a batch line into at most max numbers (whitespace or commas
