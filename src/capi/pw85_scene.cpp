@@ -113,6 +113,70 @@ int run_pairs(long long m, int *status, int nthreads, int chunk, One one) noexce
   return first_bad == m ? PW85_OK : one(first_bad);
 }
 
+// The loop of the calls whose pairs are computed kOverlapLanes at a time:
+// block(k0, res) computes pairs k0 ... k0 + kOverlapLanes - 1 (all < m),
+// writes their outputs and their statuses res[0..kOverlapLanes-1]; one(k)
+// computes pair k alone (the last m mod kOverlapLanes pairs, and the
+// returned status) and must give the same outputs and status as block.
+// Otherwise as run_pairs: chunk pairs per dynamic chunk, the status of the
+// lowest failing k.
+template <class Block, class One>
+int run_blocks(long long m, int *status, int nthreads, int chunk, Block block,
+               One one) noexcept {
+  constexpr int w = pw85::kOverlapLanes;
+  long long const nb = m / w;
+  long long first_bad = m;
+#pragma omp parallel for schedule(dynamic, chunk / w) num_threads(threads_for(nthreads, m)) \
+    reduction(min : first_bad)
+  for (long long b = 0; b < nb + (m % w); ++b) {
+    int res[w];
+    long long k0;
+    int n;
+    if (b < nb) {
+      k0 = w * b;
+      n = w;
+      block(k0, res);
+    } else {
+      k0 = w * nb + (b - nb);
+      n = 1;
+      res[0] = one(k0);
+    }
+    for (int l = 0; l < n; ++l) {
+      if (status != nullptr) status[k0 + l] = res[l];
+      if (res[l] != PW85_OK && k0 + l < first_bad) first_bad = k0 + l;
+    }
+  }
+  return first_bad == m ? PW85_OK : one(first_bad);
+}
+
+// Overlap of pairs k0 ... k0 + kOverlapLanes - 1 through the lanes of
+// overlap_lanes (docs/batch.md, "Throughput"): pair(k, r12, q1, q2) gives
+// pair k's arguments (false: the pair fails with
+// PW85_ERR_INVALID_ARGUMENT); a lane that overlap_lanes leaves undecided is
+// computed by pw85_overlap. Writes overlap[k] and res[k - k0] as the
+// one-pair loop would.
+template <class Pair>
+void overlap_block(long long k0, Pair pair, int *overlap, int res[]) noexcept {
+  constexpr int w = pw85::kOverlapLanes;
+  static constexpr double kZero[6] = {0, 0, 0, 0, 0, 0};  // r = 0: never decided by the lanes
+  double r12[w][3];
+  double const *rp[w], *q1p[w], *q2p[w];
+  bool ok[w];
+  for (int l = 0; l < w; ++l) {
+    ok[l] = pair(k0 + l, r12[l], q1p[l], q2p[l]);
+    rp[l] = r12[l];
+    if (!ok[l]) rp[l] = q1p[l] = q2p[l] = kZero;
+  }
+  int v[w];
+  pw85::overlap_lanes(rp, q1p, q2p, v);
+  for (int l = 0; l < w; ++l) {
+    int const o = !ok[l] ? PW85_ERR_INVALID_ARGUMENT
+                         : v[l] >= 0 ? v[l] : pw85_overlap(rp[l], q1p[l], q2p[l]);
+    overlap[k0 + l] = o;
+    res[l] = o < 0 ? o : PW85_OK;
+  }
+}
+
 // The index-pair loop of the *_batch functions: checks the call's arguments,
 // then one(k, r12, i, j) computes pair k with r12 = c_j - c_i (r12 ==
 // nullptr: index out of range) and returns its status.
@@ -191,17 +255,6 @@ int pw85_contact(double const r12[PW85_DIM], double const q1[PW85_SYM],
   c->depth = g.depth;
   c->depth_n = g.depth_n;
   return s;
-}
-
-int pw85_overlap_batch(long long n, double const *centres, double const *q, long long m,
-                       long long const *pairs, int *overlap, int *status, int nthreads) {
-  return batch(n, centres, q, m, pairs, overlap, status, nthreads, 256,
-               [&](long long k, double const *r12, long long i, long long j) noexcept {
-                 int const res = r12 ? pw85_overlap(r12, q + 6 * i, q + 6 * j)
-                                     : PW85_ERR_INVALID_ARGUMENT;
-                 overlap[k] = res;
-                 return res < 0 ? res : PW85_OK;
-               });
 }
 
 int pw85_contact_function_batch(long long n, double const *centres, double const *q,
@@ -368,6 +421,36 @@ int scene(long long n, double const *centres, double const *q, Box const &box, l
   });
 }
 
+// The loop of pw85_scene_overlap and pw85_overlap_batch after their
+// argument checks: blocks of kOverlapLanes pairs through overlap_block, the
+// rest (and the returned status) by pw85_overlap pair by pair.
+int scene_overlap(long long n, double const *centres, double const *q, Box const &box,
+                  long long m, long long const *pairs, int *overlap, int *status,
+                  int nthreads) noexcept {
+  auto one = [&](long long k) noexcept {
+    double r12[3];
+    long long i, j;
+    int const s = scene_r12(n, centres, q, box, pairs, k, r12, i, j);
+    int const res = s == PW85_OK ? pw85_overlap(r12, q + 6 * i, q + 6 * j) : s;
+    overlap[k] = res;
+    return res < 0 ? res : PW85_OK;
+  };
+  auto block = [&](long long k0, int res[]) noexcept {
+    overlap_block(
+        k0,
+        [&](long long k, double r[3], double const *&a, double const *&b) noexcept {
+          prefetch_pair(n, centres, q, pairs, m, k);
+          long long i, j;
+          if (scene_r12(n, centres, q, box, pairs, k, r, i, j) != PW85_OK) return false;
+          a = q + 6 * i;
+          b = q + 6 * j;
+          return true;
+        },
+        overlap, res);
+  };
+  return run_blocks(m, status, nthreads, 256, block, one);
+}
+
 inline bool scene_args(long long n, double const *centres, double const *q, double const *box,
                        long long m, long long const *pairs, void const *out, int nthreads,
                        Box &b) noexcept {
@@ -385,11 +468,23 @@ int pw85_overlap_pairs(long long m, double const *r12, double const *q1, double 
   if (!valid_count(m, nthreads) || r12 == nullptr || q1 == nullptr || q2 == nullptr ||
       overlap == nullptr)
     return PW85_ERR_INVALID_ARGUMENT;
-  return run_pairs(m, status, nthreads, 256, [&](long long k) noexcept {
+  auto one = [&](long long k) noexcept {
     int const res = pw85_overlap(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k);
     overlap[k] = res;
     return res < 0 ? res : PW85_OK;
-  });
+  };
+  auto block = [&](long long k0, int res[]) noexcept {
+    overlap_block(
+        k0,
+        [&](long long k, double r[3], double const *&a, double const *&b) noexcept {
+          for (int d = 0; d < 3; ++d) r[d] = r12[3 * k + d];
+          a = q1 + 6 * k;
+          b = q2 + 6 * k;
+          return true;
+        },
+        overlap, res);
+  };
+  return run_blocks(m, status, nthreads, 256, block, one);
 }
 
 int pw85_contact_function_pairs(long long m, double const *r12, double const *q1,
@@ -423,13 +518,16 @@ int pw85_scene_overlap(long long n, double const *centres, double const *q,
   Box b;
   if (!scene_args(n, centres, q, box, m, pairs, overlap, nthreads, b))
     return PW85_ERR_INVALID_ARGUMENT;
-  return scene(n, centres, q, b, m, pairs, status, nthreads, 256,
-               [&](long long k, double const *r12, long long i, long long j) noexcept {
-                 int const res = r12 ? pw85_overlap(r12, q + 6 * i, q + 6 * j)
-                                     : PW85_ERR_INVALID_ARGUMENT;
-                 overlap[k] = res;
-                 return res < 0 ? res : PW85_OK;
-               });
+  return scene_overlap(n, centres, q, b, m, pairs, overlap, status, nthreads);
+}
+
+int pw85_overlap_batch(long long n, double const *centres, double const *q, long long m,
+                       long long const *pairs, int *overlap, int *status, int nthreads) {
+  if (m == 0) return PW85_OK;
+  if (n < 0 || m < 0 || centres == nullptr || q == nullptr || pairs == nullptr ||
+      overlap == nullptr || nthreads < 0)
+    return PW85_ERR_INVALID_ARGUMENT;
+  return scene_overlap(n, centres, q, Box{}, m, pairs, overlap, status, nthreads);
 }
 
 int pw85_scene_contact_function(long long n, double const *centres, double const *q,
