@@ -113,17 +113,16 @@ int run_pairs(long long m, int *status, int nthreads, int chunk, One one) noexce
   return first_bad == m ? PW85_OK : one(first_bad);
 }
 
-// The loop of the calls whose pairs are computed kOverlapLanes at a time:
-// block(k0, res) computes pairs k0 ... k0 + kOverlapLanes - 1 (all < m),
-// writes their outputs and their statuses res[0..kOverlapLanes-1]; one(k)
-// computes pair k alone (the last m mod kOverlapLanes pairs, and the
+// The loop of the calls whose pairs are computed w at a time (the lanes of
+// overlap_lanes or default_lanes): block(k0, res) computes pairs k0 ...
+// k0 + w - 1 (all < m), writes their outputs and their statuses res[0..w-1]; one(k)
+// computes pair k alone (the last m mod w pairs, and the
 // returned status) and must give the same outputs and status as block.
 // Otherwise as run_pairs: chunk pairs per dynamic chunk, the status of the
 // lowest failing k.
-template <class Block, class One>
+template <int w, class Block, class One>
 int run_blocks(long long m, int *status, int nthreads, int chunk, Block block,
                One one) noexcept {
-  constexpr int w = pw85::kOverlapLanes;
   long long const nb = m / w;
   long long first_bad = m;
 #pragma omp parallel for schedule(dynamic, chunk / w) num_threads(threads_for(nthreads, m)) \
@@ -448,7 +447,7 @@ int scene_overlap(long long n, double const *centres, double const *q, Box const
         },
         overlap, res);
   };
-  return run_blocks(m, status, nthreads, 256, block, one);
+  return run_blocks<pw85::kOverlapLanes>(m, status, nthreads, 256, block, one);
 }
 
 inline bool scene_args(long long n, double const *centres, double const *q, double const *box,
@@ -484,7 +483,7 @@ int pw85_overlap_pairs(long long m, double const *r12, double const *q1, double 
         },
         overlap, res);
   };
-  return run_blocks(m, status, nthreads, 256, block, one);
+  return run_blocks<pw85::kOverlapLanes>(m, status, nthreads, 256, block, one);
 }
 
 int pw85_contact_function_pairs(long long m, double const *r12, double const *q1,
@@ -495,9 +494,39 @@ int pw85_contact_function_pairs(long long m, double const *r12, double const *q1
       res == nullptr)
     return PW85_ERR_INVALID_ARGUMENT;
   if (!pw85::is_method(method)) return PW85_ERR_UNKNOWN_METHOD;
-  return run_pairs(m, status, nthreads, 64, [&](long long k) noexcept {
+  auto one = [&](long long k) noexcept {
     return pw85_contact_function_method(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k, method, res + k);
-  });
+  };
+  if (method != PW85_METHOD_DEFAULT || !pw85::default_lanes_available())
+    return run_pairs(m, status, nthreads, 64, one);
+  // kDefaultLanes pairs through the lanes of default_lanes; a lane it does
+  // not accept is computed by the one-pair call (docs/batch.md).
+  auto block = [&](long long k0, int st[]) noexcept {
+    constexpr int w = pw85::kDefaultLanes;
+    double const *rp[w], *q1p[w], *q2p[w];
+    for (int l = 0; l < w; ++l) {
+      rp[l] = r12 + 3 * (k0 + l);
+      q1p[l] = q1 + 6 * (k0 + l);
+      q2p[l] = q2 + 6 * (k0 + l);
+    }
+    pw85::MethodResult mr[w];
+    bool acc[w];
+    pw85::default_lanes(rp, q1p, q2p, mr, acc);
+    for (int l = 0; l < w; ++l) {
+      if (acc[l]) {
+        pw85_result &o = res[k0 + l];
+        o.mu2 = mr[l].mu2;
+        o.lambda = mr[l].lambda;
+        o.mu2_error = mr[l].mu2_error;
+        o.iterations = mr[l].iterations;
+        o.method = mr[l].method;
+        st[l] = PW85_OK;
+      } else {
+        st[l] = one(k0 + l);
+      }
+    }
+  };
+  return run_blocks<pw85::kDefaultLanes>(m, status, nthreads, 64, block, one);
 }
 
 int pw85_contact_pairs(long long m, double const *r12, double const *q1, double const *q2,
