@@ -712,6 +712,67 @@ static void test_overlap_lanes(gconstpointer data) {
   }
 }
 
+/* pw85_contact_function_pairs with DEFAULT through the lanes of
+ * default_lanes (docs/batch.md, "Throughput") against
+ * pw85_contact_function_method on the pairs of make_lane_pairs (r12 = 0, a
+ * matrix of condition 1e15, near-contact pairs) with bad ones among them
+ * (NaN r12, a matrix not positive definite, an infinite entry, a zero
+ * matrix): every result and status bitwise equal, for the whole array on 1
+ * and 2 threads and for arrays of m = 1 ... 9 pairs at every offset
+ * 0 ... 47. Classes 0 and 1, where the long double mu2_ld is accurate to
+ * ~1e-17: relative error <= 1e-14 wherever the status is PW85_OK. */
+static void test_default_lanes(gconstpointer data) {
+  int const cls = *(const int *)data;
+  static lane_pairs s;
+  static pw85_result exp[LP], out[LP];
+  static int exp_st[LP], st[LP];
+  make_lane_pairs(&s, cls, 91 + cls);
+  s.r12[3 * 12 + 0] = NAN;
+  s.q1[6 * 23 + 3] = -1.0;
+  s.q2[6 * 35 + 4] = -INFINITY;
+  memset(s.q1 + 6 * 47, 0, 6 * sizeof(double));
+  int first = LP, n_ok = 0;
+  double max_err = 0.0;
+  for (int k = 0; k < LP; k++) {
+    exp_st[k] = pw85_contact_function_method(s.r12 + 3 * k, s.q1 + 6 * k, s.q2 + 6 * k,
+                                             PW85_METHOD_DEFAULT, exp + k);
+    if (exp_st[k] != PW85_OK && first == LP) first = k;
+    if (exp_st[k] != PW85_OK) continue;
+    n_ok++;
+    if (cls <= 1 && k % 61 != 9 && k % 97 != 3) {
+      double const ref = (double)mu2_ld(s.r12 + 3 * k, s.q1 + 6 * k, s.q2 + 6 * k, NULL);
+      max_err = fmax(max_err, rel_error(exp[k].mu2, ref));
+    }
+  }
+  g_test_message("class %d: %d of %d pairs PW85_OK, max relative error %.3g", cls, n_ok, LP,
+                 max_err);
+  g_assert_cmpint(first, ==, 12);
+  g_assert_cmpint(n_ok, >, LP - LP / 10);
+  g_assert_cmpfloat(max_err, <=, 1e-14);
+  for (int threads = 1; threads <= 2; threads++) {
+    memset(out, 0xA5, sizeof out);
+    memset(st, 0xA5, sizeof st);
+    g_assert_cmpint(pw85_contact_function_pairs(LP, s.r12, s.q1, s.q2, PW85_METHOD_DEFAULT, out,
+                                                st, threads),
+                    ==, exp_st[first]);
+    g_assert_true(memcmp(out, exp, sizeof out) == 0);
+    g_assert_true(memcmp(st, exp_st, sizeof st) == 0);
+  }
+  for (int m = 1; m <= 9; m++)
+    for (int k0 = 0; k0 < 48; k0++) {
+      int lowest = PW85_OK;
+      for (int k = k0 + m - 1; k >= k0; k--)
+        if (exp_st[k] != PW85_OK) lowest = exp_st[k];
+      memset(out, 0xA5, m * sizeof(pw85_result));
+      memset(st, 0xA5, m * sizeof(int));
+      g_assert_cmpint(pw85_contact_function_pairs(m, s.r12 + 3 * k0, s.q1 + 6 * k0, s.q2 + 6 * k0,
+                                                  PW85_METHOD_DEFAULT, out, st, 1),
+                      ==, lowest);
+      g_assert_true(memcmp(out, exp + k0, m * sizeof(pw85_result)) == 0);
+      g_assert_true(memcmp(st, exp_st + k0, m * sizeof(int)) == 0);
+    }
+}
+
 static void test_huge_nthreads(gconstpointer data) {
   int const f = *(const int *)data;
   static pair_arrays s;
@@ -759,6 +820,8 @@ int main(int argc, char **argv) {
     char path[64];
     g_snprintf(path, sizeof path, "/pw85_overlap_pairs/lanes-class-%d", c);
     g_test_add_data_func(path, &classes[c], test_overlap_lanes);
+    g_snprintf(path, sizeof path, "/pw85_contact_function_pairs/default-lanes-class-%d", c);
+    g_test_add_data_func(path, &classes[c], test_default_lanes);
   }
   g_test_add_func("/pw85_scene_overlap/bounding-spheres", test_scene_reach);
   g_test_add_func("/pw85_scene_overlap/bad-input", test_new_bad_input);
