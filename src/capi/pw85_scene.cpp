@@ -296,6 +296,45 @@ void fill_nan_result(pw85_result *res, int method) noexcept {
   res->method = method;
 }
 
+// DEFAULT for pairs k0 ... k0 + kDefaultLanes - 1 through the lanes of
+// default_lanes (docs/batch.md, "Throughput"): pair(k, r12, q1, q2) gives
+// pair k's arguments (false: the pair fails with
+// PW85_ERR_INVALID_ARGUMENT); a lane that default_lanes does not accept is
+// computed by pw85_contact_function_method. Writes res[k] and st[k - k0] as
+// the one-pair loop would.
+template <class Pair>
+void default_block(long long k0, Pair pair, pw85_result *res, int st[]) noexcept {
+  constexpr int w = pw85::kDefaultLanes;
+  static constexpr double kZero[6] = {0, 0, 0, 0, 0, 0};  // r = 0: never accepted by the lanes
+  double r12[w][3];
+  double const *rp[w], *q1p[w], *q2p[w];
+  bool ok[w];
+  for (int l = 0; l < w; ++l) {
+    ok[l] = pair(k0 + l, r12[l], q1p[l], q2p[l]);
+    rp[l] = r12[l];
+    if (!ok[l]) rp[l] = q1p[l] = q2p[l] = kZero;
+  }
+  pw85::MethodResult mr[w];
+  bool acc[w];
+  pw85::default_lanes(rp, q1p, q2p, mr, acc);
+  for (int l = 0; l < w; ++l) {
+    pw85_result &o = res[k0 + l];
+    if (!ok[l]) {
+      fill_nan_result(&o, PW85_METHOD_DEFAULT);
+      st[l] = PW85_ERR_INVALID_ARGUMENT;
+    } else if (acc[l]) {
+      o.mu2 = mr[l].mu2;
+      o.lambda = mr[l].lambda;
+      o.mu2_error = mr[l].mu2_error;
+      o.iterations = mr[l].iterations;
+      o.method = mr[l].method;
+      st[l] = PW85_OK;
+    } else {
+      st[l] = pw85_contact_function_method(rp[l], q1p[l], q2p[l], PW85_METHOD_DEFAULT, &o);
+    }
+  }
+}
+
 // The checks shared by the calls of m > 0 pairs (pointers checked by the
 // caller).
 inline bool valid_count(long long m, int nthreads) noexcept { return m > 0 && nthreads >= 0; }
@@ -499,32 +538,16 @@ int pw85_contact_function_pairs(long long m, double const *r12, double const *q1
   };
   if (method != PW85_METHOD_DEFAULT || !pw85::default_lanes_available())
     return run_pairs(m, status, nthreads, 64, one);
-  // kDefaultLanes pairs through the lanes of default_lanes; a lane it does
-  // not accept is computed by the one-pair call (docs/batch.md).
   auto block = [&](long long k0, int st[]) noexcept {
-    constexpr int w = pw85::kDefaultLanes;
-    double const *rp[w], *q1p[w], *q2p[w];
-    for (int l = 0; l < w; ++l) {
-      rp[l] = r12 + 3 * (k0 + l);
-      q1p[l] = q1 + 6 * (k0 + l);
-      q2p[l] = q2 + 6 * (k0 + l);
-    }
-    pw85::MethodResult mr[w];
-    bool acc[w];
-    pw85::default_lanes(rp, q1p, q2p, mr, acc);
-    for (int l = 0; l < w; ++l) {
-      if (acc[l]) {
-        pw85_result &o = res[k0 + l];
-        o.mu2 = mr[l].mu2;
-        o.lambda = mr[l].lambda;
-        o.mu2_error = mr[l].mu2_error;
-        o.iterations = mr[l].iterations;
-        o.method = mr[l].method;
-        st[l] = PW85_OK;
-      } else {
-        st[l] = one(k0 + l);
-      }
-    }
+    default_block(
+        k0,
+        [&](long long k, double r[3], double const *&a, double const *&b) noexcept {
+          for (int d = 0; d < 3; ++d) r[d] = r12[3 * k + d];
+          a = q1 + 6 * k;
+          b = q2 + 6 * k;
+          return true;
+        },
+        res, st);
   };
   return run_blocks<pw85::kDefaultLanes>(m, status, nthreads, 64, block, one);
 }
@@ -567,13 +590,33 @@ int pw85_scene_contact_function(long long n, double const *centres, double const
   if (!scene_args(n, centres, q, box, m, pairs, res, nthreads, b))
     return PW85_ERR_INVALID_ARGUMENT;
   if (!pw85::is_method(method)) return PW85_ERR_UNKNOWN_METHOD;
-  return scene(n, centres, q, b, m, pairs, status, nthreads, 64,
-               [&](long long k, double const *r12, long long i, long long j) noexcept {
-                 if (r12)
-                   return pw85_contact_function_method(r12, q + 6 * i, q + 6 * j, method, res + k);
-                 fill_nan_result(res + k, method);
-                 return int{PW85_ERR_INVALID_ARGUMENT};
-               });
+  auto one_r12 = [&](long long k, double const *r12, long long i, long long j) noexcept {
+    if (r12) return pw85_contact_function_method(r12, q + 6 * i, q + 6 * j, method, res + k);
+    fill_nan_result(res + k, method);
+    return int{PW85_ERR_INVALID_ARGUMENT};
+  };
+  if (method != PW85_METHOD_DEFAULT || !pw85::default_lanes_available())
+    return scene(n, centres, q, b, m, pairs, status, nthreads, 64, one_r12);
+  auto one = [&](long long k) noexcept {
+    double r12[3];
+    long long i, j;
+    int const s = scene_r12(n, centres, q, b, pairs, k, r12, i, j);
+    return one_r12(k, s == PW85_OK ? r12 : nullptr, i, j);
+  };
+  auto block = [&](long long k0, int st[]) noexcept {
+    default_block(
+        k0,
+        [&](long long k, double r[3], double const *&a, double const *&c) noexcept {
+          prefetch_pair(n, centres, q, pairs, m, k);
+          long long i, j;
+          if (scene_r12(n, centres, q, b, pairs, k, r, i, j) != PW85_OK) return false;
+          a = q + 6 * i;
+          c = q + 6 * j;
+          return true;
+        },
+        res, st);
+  };
+  return run_blocks<pw85::kDefaultLanes>(m, status, nthreads, 64, block, one);
 }
 
 int pw85_contact_derivatives_pairs(long long m, double const *r12, double const *q1,
