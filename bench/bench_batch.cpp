@@ -28,7 +28,12 @@
 // and reported the same way. Threads (--threads-n T, default 10^6; 0
 // skips): T class-0 pairs, the two pairs calls on 1 and 2 threads
 // alternately, wall clock; speed-up = median of the ratios of consecutive
-// 1- and 2-thread passes (min, max).
+// 1- and 2-thread passes (min, max). --callgrind C F: only function F of
+// class C (0 loop pw85_overlap, 1 pw85_overlap_pairs, 2 loop DEFAULT, 3
+// pw85_contact_function_pairs DEFAULT) once over its --class-n pairs, in
+// run_once, for instruction counts (docs/batch.md):
+//   valgrind --tool=callgrind --toggle-collect='*run_once*'
+//       build/bench/bench_batch --class-n 20000 --callgrind C F x.csv
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -88,6 +93,10 @@ void make_pairs(bench::Rng &g, int m, double lo, double hi, std::vector<double> 
   }
 }
 
+// The function of --callgrind, out of line so that callgrind can count it
+// alone.
+__attribute__((noinline)) void run_once(std::function<void()> const &f) { f(); }
+
 // One untimed round, then reps rounds of every function of every group
 // (thread CPU time, ns per pair over m pairs; ratio to the group's first
 // function, in the same round); same(g, f) checks the results of function f
@@ -133,7 +142,7 @@ void print_groups(FILE *csv, std::vector<std::vector<Fn>> const &groups, char co
 }  // namespace
 
 int main(int argc, char **argv) {
-  int m = 100000, reps = 9, class_n = -1, threads_n = 1000000;
+  int m = 100000, reps = 9, class_n = -1, threads_n = 1000000, cg_class = -1, cg_fn = -1;
   uint64_t seed = 1;
   char const *csv_path = nullptr;
   for (int i = 1; i < argc;) {
@@ -143,22 +152,43 @@ int main(int argc, char **argv) {
     } else if (i + 1 < argc && !std::strcmp(argv[i], "--class-n")) {
       class_n = std::atoi(argv[i + 1]);
       i += 2;
+    } else if (i + 2 < argc && !std::strcmp(argv[i], "--callgrind")) {
+      cg_class = std::atoi(argv[i + 1]);
+      cg_fn = std::atoi(argv[i + 2]);
+      i += 3;
     } else if (i + 1 < argc && !std::strcmp(argv[i], "--threads-n")) {
       threads_n = std::atoi(argv[i + 1]);
       i += 2;
     } else if (argv[i][0] != '-' && !csv_path) {
       csv_path = argv[i++];
     } else {
-      std::fprintf(stderr, "usage: bench_batch [--n M] [--reps R] [--seed S] [--class-n M2] [--threads-n T] OUT.csv\n");
+      std::fprintf(stderr, "usage: bench_batch [--n M] [--reps R] [--seed S] [--class-n M2] [--threads-n T] [--callgrind C F] OUT.csv\n");
       return 2;
     }
   }
   if (class_n < 0) class_n = m;
   if (!csv_path || m < 1 || reps < 1 || threads_n < 0) {
-    std::fprintf(stderr, "usage: bench_batch [--n M] [--reps R] [--seed S] [--class-n M2] [--threads-n T] OUT.csv\n");
+    std::fprintf(stderr, "usage: bench_batch [--n M] [--reps R] [--seed S] [--class-n M2] [--threads-n T] [--callgrind C F] OUT.csv\n");
     return 2;
   }
   bench::Rng g{seed};
+  double const class_lo[4] = {0.5, 0.1, 0.01, 0.001}, class_hi[4] = {2.0, 10.0, 100.0, 1000.0};
+  if (cg_class >= 0) {
+    if (cg_class > 3 || cg_fn < 0 || cg_fn > 3 || class_n < 1) return 2;
+    int const mc = class_n;
+    std::vector<double> cr, cq1, cq2;
+    make_pairs(g, mc, class_lo[cg_class], class_hi[cg_class], cr, cq1, cq2);
+    std::vector<int> o(mc);
+    std::vector<pw85_result> f(mc);
+    double const *CR = cr.data(), *CQ1 = cq1.data(), *CQ2 = cq2.data();
+    std::function<void()> const fns[4] = {
+        [&] { for (int k = 0; k < mc; ++k) o[k] = pw85_overlap(CR + 3 * k, CQ1 + 6 * k, CQ2 + 6 * k); },
+        [&] { pw85_overlap_pairs(mc, CR, CQ1, CQ2, o.data(), nullptr, 1); },
+        [&] { for (int k = 0; k < mc; ++k) pw85_contact_function_method(CR + 3 * k, CQ1 + 6 * k, CQ2 + 6 * k, PW85_METHOD_DEFAULT, &f[k]); },
+        [&] { pw85_contact_function_pairs(mc, CR, CQ1, CQ2, PW85_METHOD_DEFAULT, f.data(), nullptr, 1); }};
+    run_once(fns[cg_fn]);
+    return 0;
+  }
   double const box[6] = {40.0, 40.0, 40.0, 0.3, 0.1, -0.2};
   long long const n = 2LL * m;
   std::vector<double> c(3 * n), q(6 * n), r12(3 * m), q1(6 * m), q2(6 * m);
@@ -241,7 +271,6 @@ int main(int argc, char **argv) {
   print_groups(csv, groups, "function (1 thread)");
 
   // ---- Per class: the pairs calls against their one-pair loops. ----
-  double const class_lo[4] = {0.5, 0.1, 0.01, 0.001}, class_hi[4] = {2.0, 10.0, 100.0, 1000.0};
   for (int cls = 0; class_n > 0 && cls < 4; ++cls) {
     int const mc = class_n;
     std::vector<double> cr, cq1, cq2;

@@ -1,8 +1,11 @@
 // extern "C" layer of the scene API: pw85_overlap, pw85_contact and the
 // batch calls over index pairs of a scene. Validation and status mapping
-// only; the work is in src/core/overlap/ and src/core/geometry/. The batch loops are parallelised with OpenMP when the
-// library is built with it; each pair is computed by exactly the code of the
-// one-pair function, so results do not depend on the number of threads.
+// only; the work is in src/core/overlap/ and src/core/geometry/. The batch
+// loops are parallelised with OpenMP when the library is built with it. Each
+// pair is computed by the one-pair function, or (overlap; DEFAULT) in a
+// vector lane that performs that function's operations on that pair alone
+// and gives its result bit for bit, else hands the pair to it; so results
+// do not depend on the number of threads, the position or the neighbours.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -282,9 +285,11 @@ int pw85_contact_batch(long long n, double const *centres, double const *q, long
 // ---- Per-pair arrays and periodic scenes ------------------------------------
 // pw85_*_pairs: pair k is (r12[3k..3k+2], q1[6k..6k+5], q2[6k..6k+5]).
 // pw85_scene_*: pair k is (i, j) = (pairs[2k], pairs[2k+1]) of the scene,
-// r12 = c_j - c_i, or its minimum image in the box. Each pair is computed by
-// the one-pair function on that r12, so its result does not depend on the
-// other pairs, on its position k or on the thread count (docs/batch.md).
+// r12 = c_j - c_i, or its minimum image in the box. Each pair's result is
+// the one-pair function's on that r12 (computed by it, or in a lane of
+// overlap_lanes / default_lanes with the same bits), so it does not depend
+// on the other pairs, on its position k or on the thread count
+// (docs/batch.md).
 
 namespace {
 
