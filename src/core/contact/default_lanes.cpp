@@ -22,7 +22,7 @@
 
 // Every function taking or returning a vector is always inline into the
 // variants below (no vector crosses a call).
-#if defined(__GNUC__) && !defined(__clang__)
+#if defined(__GNUC__)
 #pragma GCC diagnostic ignored "-Wpsabi"
 #endif
 

@@ -25,7 +25,7 @@
 // Every function taking or returning a vector is always inline into the
 // variants below (no vector crosses a call), so GCC's note that the ABI of
 // a 32-byte vector argument depends on AVX does not apply.
-#if defined(__GNUC__) && !defined(__clang__)
+#if defined(__GNUC__)
 #pragma GCC diagnostic ignored "-Wpsabi"
 #endif
 
@@ -39,7 +39,6 @@ typedef long long M __attribute__((vector_size(8 * W)));  // lane masks: 0 or -1
 
 constexpr double kC = kOverlapFilterC, kAbs = kOverlapFilterAbs;
 
-PW85_ALWAYS_INLINE V splat(double x) noexcept { return V{} + x; }
 PW85_ALWAYS_INLINE V vabs(V x) noexcept {
   return reinterpret_cast<V>(reinterpret_cast<M>(x) & (M{} + 0x7fffffffffffffffLL));
 }
