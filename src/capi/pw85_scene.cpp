@@ -152,8 +152,9 @@ int run_blocks(long long m, int *status, int nthreads, int chunk, Block block,
 }
 
 // Overlap of pairs k0 ... k0 + kOverlapLanes - 1 through the lanes of
-// overlap_lanes (docs/batch.md, "Throughput"): pair(k, r12, q1, q2) gives
-// pair k's arguments (false: the pair fails with
+// overlap_lanes (docs/batch.md, "Throughput"): pair(k, buf, r12, q1, q2)
+// gives pair k's arguments (r12 may point to buf, which it may fill; false:
+// the pair fails with
 // PW85_ERR_INVALID_ARGUMENT); a lane that overlap_lanes leaves undecided is
 // computed by pw85_overlap. Writes overlap[k] and res[k - k0] as the
 // one-pair loop would.
@@ -161,12 +162,11 @@ template <class Pair>
 void overlap_block(long long k0, Pair pair, int *overlap, int res[]) noexcept {
   constexpr int w = pw85::kOverlapLanes;
   static constexpr double kZero[6] = {0, 0, 0, 0, 0, 0};  // r = 0: never decided by the lanes
-  double r12[w][3];
+  double buf[w][3];
   double const *rp[w], *q1p[w], *q2p[w];
   bool ok[w];
   for (int l = 0; l < w; ++l) {
-    ok[l] = pair(k0 + l, r12[l], q1p[l], q2p[l]);
-    rp[l] = r12[l];
+    ok[l] = pair(k0 + l, buf[l], rp[l], q1p[l], q2p[l]);
     if (!ok[l]) rp[l] = q1p[l] = q2p[l] = kZero;
   }
   int v[w];
@@ -302,8 +302,8 @@ void fill_nan_result(pw85_result *res, int method) noexcept {
 }
 
 // DEFAULT for pairs k0 ... k0 + kDefaultLanes - 1 through the lanes of
-// default_lanes (docs/batch.md, "Throughput"): pair(k, r12, q1, q2) gives
-// pair k's arguments (false: the pair fails with
+// default_lanes (docs/batch.md, "Throughput"): pair(k, buf, r12, q1, q2)
+// gives pair k's arguments (as for overlap_block; false: the pair fails with
 // PW85_ERR_INVALID_ARGUMENT); a lane that default_lanes does not accept is
 // computed by pw85_contact_function_method. Writes res[k] and st[k - k0] as
 // the one-pair loop would.
@@ -311,12 +311,11 @@ template <class Pair>
 void default_block(long long k0, Pair pair, pw85_result *res, int st[]) noexcept {
   constexpr int w = pw85::kDefaultLanes;
   static constexpr double kZero[6] = {0, 0, 0, 0, 0, 0};  // r = 0: never accepted by the lanes
-  double r12[w][3];
+  double buf[w][3];
   double const *rp[w], *q1p[w], *q2p[w];
   bool ok[w];
   for (int l = 0; l < w; ++l) {
-    ok[l] = pair(k0 + l, r12[l], q1p[l], q2p[l]);
-    rp[l] = r12[l];
+    ok[l] = pair(k0 + l, buf[l], rp[l], q1p[l], q2p[l]);
     if (!ok[l]) rp[l] = q1p[l] = q2p[l] = kZero;
   }
   pw85::MethodResult mr[w];
@@ -481,10 +480,12 @@ int scene_overlap(long long n, double const *centres, double const *q, Box const
   auto block = [&](long long k0, int res[]) noexcept {
     overlap_block(
         k0,
-        [&](long long k, double r[3], double const *&a, double const *&b) noexcept {
+        [&](long long k, double *buf, double const *&r, double const *&a,
+            double const *&b) noexcept {
           prefetch_pair(n, centres, q, pairs, m, k);
           long long i, j;
-          if (scene_r12(n, centres, q, box, pairs, k, r, i, j) != PW85_OK) return false;
+          r = buf;
+          if (scene_r12(n, centres, q, box, pairs, k, buf, i, j) != PW85_OK) return false;
           a = q + 6 * i;
           b = q + 6 * j;
           return true;
@@ -519,8 +520,9 @@ int pw85_overlap_pairs(long long m, double const *r12, double const *q1, double 
   auto block = [&](long long k0, int res[]) noexcept {
     overlap_block(
         k0,
-        [&](long long k, double r[3], double const *&a, double const *&b) noexcept {
-          for (int d = 0; d < 3; ++d) r[d] = r12[3 * k + d];
+        [&](long long k, double *, double const *&r, double const *&a,
+            double const *&b) noexcept {
+          r = r12 + 3 * k;
           a = q1 + 6 * k;
           b = q2 + 6 * k;
           return true;
@@ -546,8 +548,9 @@ int pw85_contact_function_pairs(long long m, double const *r12, double const *q1
   auto block = [&](long long k0, int st[]) noexcept {
     default_block(
         k0,
-        [&](long long k, double r[3], double const *&a, double const *&b) noexcept {
-          for (int d = 0; d < 3; ++d) r[d] = r12[3 * k + d];
+        [&](long long k, double *, double const *&r, double const *&a,
+            double const *&b) noexcept {
+          r = r12 + 3 * k;
           a = q1 + 6 * k;
           b = q2 + 6 * k;
           return true;
@@ -611,10 +614,12 @@ int pw85_scene_contact_function(long long n, double const *centres, double const
   auto block = [&](long long k0, int st[]) noexcept {
     default_block(
         k0,
-        [&](long long k, double r[3], double const *&a, double const *&c) noexcept {
+        [&](long long k, double *buf, double const *&r, double const *&a,
+            double const *&c) noexcept {
           prefetch_pair(n, centres, q, pairs, m, k);
           long long i, j;
-          if (scene_r12(n, centres, q, b, pairs, k, r, i, j) != PW85_OK) return false;
+          r = buf;
+          if (scene_r12(n, centres, q, b, pairs, k, buf, i, j) != PW85_OK) return false;
           a = q + 6 * i;
           c = q + 6 * j;
           return true;
