@@ -590,11 +590,31 @@ static int call_batch(int f, const pair_arrays *s, void *out, int *st, int nthre
   }
 }
 
+/* Reference mu2, independent of the library: the maximiser from the golden
+ * section search of mu2_ld, then Newton steps on f' with f, f', f'' in
+ * __float128 (q_f_derivs); the largest f met. About 1e-16 relative in the
+ * classes below, also under valgrind, whose long double is a double. */
+static double mu2_ref(const double r[3], const double q1[6], const double q2[6]) {
+  long double lam_ld;
+  mu2_ld(r, q1, q2, &lam_ld);
+  double lam = (double)lam_ld, best = 0.0;
+  for (int it = 0; it < 3; it++) {  /* lam from mu2_ld: ~1e-8, then 1e-16 */
+    double d[3];
+    q_f_derivs(lam, r, q1, q2, d);
+    if (d[0] > best) best = d[0];
+    if (!(d[2] < 0.0)) break;
+    double const next = lam - d[1] / d[2];
+    if (!(next > 0.0 && next < 1.0)) break;
+    lam = next;
+  }
+  return best;
+}
+
 /* Pairs of the four classes of the benchmarks (semi-axes log-uniform in
  * [0.5, 2], [0.1, 10], [0.01, 100], [0.001, 1000]), centre distance
  * (a1max + a2max) 10^U(-2, 0.5); every odd pair rescaled to near contact,
- * mu2 = t = 1 -+ 10^U(-13, -2) by the long double mu2_ld (side[k]: the
- * verdict, when |1 - t| exceeds the error of mu2_ld, else -1). A few
+ * mu2 = t = 1 -+ 10^U(-13, -2) by mu2_ref (side[k]: the verdict, when
+ * |1 - t| exceeds 1e-9, far above the error of mu2_ref, else -1). A few
  * degenerate pairs: r12 = 0, a matrix of condition number 1e15. */
 #define LP 2048
 typedef struct {
@@ -604,8 +624,7 @@ typedef struct {
 
 static void make_lane_pairs(lane_pairs *s, int cls, guint32 seed) {
   static const double lo[4] = {0.5, 0.1, 0.01, 0.001}, hi[4] = {2.0, 10.0, 100.0, 1000.0};
-  /* relative error of mu2_ld: ~cond(Q) 1e-19 (long double adjugate) */
-  double const tol = cls == 3 ? 1e-4 : 1e-6;
+  double const tol = 1e-9;
   GRand *rng = g_rand_new_with_seed(seed);
   for (int k = 0; k < LP; k++) {
     double rad1[3], rad2[3], ax[9], dir[9];
@@ -623,7 +642,7 @@ static void make_lane_pairs(lane_pairs *s, int cls, guint32 seed) {
     for (int d = 0; d < 3; d++) r[d] = k % 97 == 3 ? 0.0 : dist * dir[d];
     s->side[k] = -1;
     if (k % 2 && k % 61 != 9 && k % 97 != 3) {
-      double const mu2 = (double)mu2_ld(r, q1, q2, NULL);
+      double const mu2 = mu2_ref(r, q1, q2);
       double const e = pow(10.0, g_rand_double_range(rng, -13.0, -2.0));
       double const t = k % 4 == 1 ? 1.0 - e : 1.0 + e;
       double const sc = sqrt(t / mu2);
@@ -641,7 +660,7 @@ static void make_lane_pairs(lane_pairs *s, int cls, guint32 seed) {
  * and 2 threads, for arrays of m = 1 ... 9 pairs starting at every offset
  * 0 ... 47 (each pair in every lane position and in the tail, next to bad
  * pairs), and through pw85_scene_overlap and pw85_overlap_batch on the
- * scene of the same pairs; the verdicts known from mu2_ld all right. */
+ * scene of the same pairs; the verdicts known from mu2_ref all right. */
 static void test_overlap_lanes(gconstpointer data) {
   int const cls = *(const int *)data;
   static lane_pairs s;
@@ -666,7 +685,7 @@ static void test_overlap_lanes(gconstpointer data) {
     }
   }
   g_assert_cmpint(wrong, ==, 0);
-  g_assert_cmpint(known, >, LP / 16);
+  g_assert_cmpint(known, >, LP / 4);
   g_assert_cmpint(first, ==, 10);
   g_assert_cmpint(n_overlap, >, LP / 4);
   g_assert_cmpint(n_overlap, <, 3 * LP / 4);
@@ -719,8 +738,8 @@ static void test_overlap_lanes(gconstpointer data) {
  * (NaN r12, a matrix not positive definite, an infinite entry, a zero
  * matrix): every result and status bitwise equal, for the whole array on 1
  * and 2 threads and for arrays of m = 1 ... 9 pairs at every offset
- * 0 ... 47. Classes 0 and 1, where the long double mu2_ld is accurate to
- * ~1e-17: relative error <= 1e-14 wherever the status is PW85_OK. */
+ * 0 ... 47. Relative error against mu2_ref <= 1e-14 on every third pair
+ * whose status is PW85_OK (r12 = 0 and the condition-1e15 pairs left out). */
 static void test_default_lanes(gconstpointer data) {
   int const cls = *(const int *)data;
   static lane_pairs s;
@@ -739,8 +758,8 @@ static void test_default_lanes(gconstpointer data) {
     if (exp_st[k] != PW85_OK && first == LP) first = k;
     if (exp_st[k] != PW85_OK) continue;
     n_ok++;
-    if (cls <= 1 && k % 61 != 9 && k % 97 != 3) {
-      double const ref = (double)mu2_ld(s.r12 + 3 * k, s.q1 + 6 * k, s.q2 + 6 * k, NULL);
+    if (k % 3 == 0 && k % 61 != 9 && k % 97 != 3) {
+      double const ref = mu2_ref(s.r12 + 3 * k, s.q1 + 6 * k, s.q2 + 6 * k);
       max_err = fmax(max_err, rel_error(exp[k].mu2, ref));
     }
   }
