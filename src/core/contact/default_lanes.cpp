@@ -18,6 +18,8 @@
 #include "common/isa.hpp"
 #include "common/screen.hpp"
 #include "contact/contact.hpp"
+#include "contact/default_params.hpp"
+#include "contact/start.hpp"
 #include "eval/f_dd.hpp"
 
 // Every function taking or returning a vector is always inline into the
@@ -34,15 +36,8 @@ constexpr int W = kDefaultLanes;
 typedef double V __attribute__((vector_size(8 * W)));
 typedef long long M __attribute__((vector_size(8 * W)));  // lane masks: 0 or -1
 
-// The constants of default.cpp and start.hpp that this path uses.
-constexpr double kFastRel = 4e-15;
-constexpr double kStatRel = 10.0 * kU;
-constexpr double kExtrapGap = 1e-6;
-constexpr double kExtrapBudget = 1e-16;
-constexpr int kStartMin = 1, kStartMax = 6;
-constexpr double kStartTol = 3e-2;
-constexpr double kClamp = 1.6;
-constexpr double kInv6 = 1.0 / 6.0, kInv24 = 1.0 / 24.0;
+using namespace default_params;
+constexpr double kClamp = kLogNewtonClamp;
 // Halley steps tried in the lanes; the pairs that need more are left to the
 // one-pair call (which repeats them: same bits).
 constexpr int kLaneMaxIter = 8;
