@@ -590,6 +590,208 @@ static int call_batch(int f, const pair_arrays *s, void *out, int *st, int nthre
   }
 }
 
+/* Reference mu2, independent of the library: the maximiser from the golden
+ * section search of mu2_ld, then Newton steps on f' with f, f', f'' in
+ * __float128 (q_f_derivs); the largest f met. About 1e-16 relative in the
+ * classes below, also under valgrind, whose long double is a double. */
+static double mu2_ref(const double r[3], const double q1[6], const double q2[6]) {
+  long double lam_ld;
+  mu2_ld(r, q1, q2, &lam_ld);
+  double lam = (double)lam_ld, best = 0.0;
+  for (int it = 0; it < 3; it++) {  /* lam from mu2_ld: ~1e-8, then 1e-16 */
+    double d[3];
+    q_f_derivs(lam, r, q1, q2, d);
+    if (d[0] > best) best = d[0];
+    if (!(d[2] < 0.0)) break;
+    double const next = lam - d[1] / d[2];
+    if (!(next > 0.0 && next < 1.0)) break;
+    lam = next;
+  }
+  return best;
+}
+
+/* Pairs of the four classes of the benchmarks (semi-axes log-uniform in
+ * [0.5, 2], [0.1, 10], [0.01, 100], [0.001, 1000]), centre distance
+ * (a1max + a2max) 10^U(-2, 0.5); every odd pair rescaled to near contact,
+ * mu2 = t = 1 -+ 10^U(-13, -2) by mu2_ref (side[k]: the verdict, when
+ * |1 - t| exceeds 1e-9, far above the error of mu2_ref, else -1). A few
+ * degenerate pairs: r12 = 0, a matrix of condition number 1e15. */
+#define LP 2048
+typedef struct {
+  double r12[3 * LP], q1[6 * LP], q2[6 * LP];
+  int side[LP];
+} lane_pairs;
+
+static void make_lane_pairs(lane_pairs *s, int cls, guint32 seed) {
+  static const double lo[4] = {0.5, 0.1, 0.01, 0.001}, hi[4] = {2.0, 10.0, 100.0, 1000.0};
+  double const tol = 1e-9;
+  GRand *rng = g_rand_new_with_seed(seed);
+  for (int k = 0; k < LP; k++) {
+    double rad1[3], rad2[3], ax[9], dir[9];
+    double *r = s->r12 + 3 * k, *q1 = s->q1 + 6 * k, *q2 = s->q2 + 6 * k;
+    random_radii(rng, lo[cls], hi[cls], rad1);
+    random_axes(rng, ax);
+    make_q(rad1, ax, q1);
+    random_radii(rng, lo[cls], hi[cls], rad2);
+    random_axes(rng, ax);
+    make_q(rad2, ax, q2);
+    if (k % 61 == 9) random_spd(rng, 1e15, q1);
+    random_axes(rng, dir);
+    double const reach = fmax(rad1[0], fmax(rad1[1], rad1[2])) + fmax(rad2[0], fmax(rad2[1], rad2[2]));
+    double const dist = reach * pow(10.0, g_rand_double_range(rng, -2.0, 0.5));
+    for (int d = 0; d < 3; d++) r[d] = k % 97 == 3 ? 0.0 : dist * dir[d];
+    s->side[k] = -1;
+    if (k % 2 && k % 61 != 9 && k % 97 != 3) {
+      double const mu2 = mu2_ref(r, q1, q2);
+      double const e = pow(10.0, g_rand_double_range(rng, -13.0, -2.0));
+      double const t = k % 4 == 1 ? 1.0 - e : 1.0 + e;
+      double const sc = sqrt(t / mu2);
+      for (int d = 0; d < 3; d++) r[d] *= sc;
+      if (e >= tol) s->side[k] = t < 1.0;
+    }
+  }
+  g_rand_free(rng);
+}
+
+/* The overlap calls through the lanes of overlap_lanes (docs/batch.md,
+ * "Throughput") against pw85_overlap on the pairs above with bad ones among
+ * them (NaN r12, a matrix not positive definite, an infinite entry, a zero
+ * matrix): every verdict and status bitwise equal, for the whole array on 1
+ * and 2 threads, for arrays of m = 1 ... 9 pairs starting at every offset
+ * 0 ... 47 (each pair in every lane position and in the tail, next to bad
+ * pairs), and through pw85_scene_overlap and pw85_overlap_batch on the
+ * scene of the same pairs; the verdicts known from mu2_ref all right. */
+static void test_overlap_lanes(gconstpointer data) {
+  int const cls = *(const int *)data;
+  static lane_pairs s;
+  static int exp[LP], exp_st[LP], out[LP], st[LP];
+  static double c[6 * LP], q[12 * LP];
+  static long long pairs[2 * LP];
+  make_lane_pairs(&s, cls, 81 + cls);
+  s.r12[3 * 10 + 2] = NAN;
+  s.q2[6 * 21 + 0] = -1.0;
+  s.q1[6 * 33 + 3] = INFINITY;
+  memset(s.q2 + 6 * 45, 0, 6 * sizeof(double));
+  s.side[10] = s.side[21] = s.side[33] = s.side[45] = -1;
+  int known = 0, wrong = 0, first = LP, n_overlap = 0;
+  for (int k = 0; k < LP; k++) {
+    exp[k] = pw85_overlap(s.r12 + 3 * k, s.q1 + 6 * k, s.q2 + 6 * k);
+    exp_st[k] = exp[k] < 0 ? exp[k] : PW85_OK;
+    if (exp[k] < 0 && first == LP) first = k;
+    n_overlap += exp[k] == 1;
+    if (s.side[k] >= 0) {
+      known++;
+      wrong += exp[k] != s.side[k];
+    }
+  }
+  g_assert_cmpint(wrong, ==, 0);
+  g_assert_cmpint(known, >, LP / 4);
+  g_assert_cmpint(first, ==, 10);
+  g_assert_cmpint(n_overlap, >, LP / 4);
+  g_assert_cmpint(n_overlap, <, 3 * LP / 4);
+  for (int threads = 1; threads <= 2; threads++) {
+    memset(out, 0xA5, sizeof out);
+    memset(st, 0xA5, sizeof st);
+    g_assert_cmpint(pw85_overlap_pairs(LP, s.r12, s.q1, s.q2, out, st, threads), ==,
+                    exp_st[first]);
+    g_assert_true(memcmp(out, exp, sizeof out) == 0);
+    g_assert_true(memcmp(st, exp_st, sizeof st) == 0);
+  }
+  for (int m = 1; m <= 9; m++)
+    for (int k0 = 0; k0 < 48; k0++) {
+      int lowest = PW85_OK;
+      for (int k = k0 + m - 1; k >= k0; k--)
+        if (exp_st[k] != PW85_OK) lowest = exp_st[k];
+      memset(out, 0xA5, m * sizeof(int));
+      memset(st, 0xA5, m * sizeof(int));
+      g_assert_cmpint(pw85_overlap_pairs(m, s.r12 + 3 * k0, s.q1 + 6 * k0, s.q2 + 6 * k0, out, st, 1),
+                      ==, lowest);
+      g_assert_true(memcmp(out, exp + k0, m * sizeof(int)) == 0);
+      g_assert_true(memcmp(st, exp_st + k0, m * sizeof(int)) == 0);
+    }
+  /* scene: ellipsoid 2k at the origin, 2k+1 at r12 (c_j - c_i = r12 exactly) */
+  for (int k = 0; k < LP; k++) {
+    for (int d = 0; d < 3; d++) {
+      c[6 * k + d] = 0.0;
+      c[6 * k + 3 + d] = s.r12[3 * k + d];
+    }
+    memcpy(q + 12 * k, s.q1 + 6 * k, 6 * sizeof(double));
+    memcpy(q + 12 * k + 6, s.q2 + 6 * k, 6 * sizeof(double));
+    pairs[2 * k] = 2 * k;
+    pairs[2 * k + 1] = 2 * k + 1;
+  }
+  for (int f = 0; f < 2; f++) {
+    memset(out, 0xA5, sizeof out);
+    memset(st, 0xA5, sizeof st);
+    int const ret = f ? pw85_overlap_batch(2 * LP, c, q, LP, pairs, out, st, 2)
+                      : pw85_scene_overlap(2 * LP, c, q, NULL, LP, pairs, out, st, 2);
+    g_assert_cmpint(ret, ==, exp_st[first]);
+    g_assert_true(memcmp(out, exp, sizeof out) == 0);
+    g_assert_true(memcmp(st, exp_st, sizeof st) == 0);
+  }
+}
+
+/* pw85_contact_function_pairs with DEFAULT through the lanes of
+ * default_lanes (docs/batch.md, "Throughput") against
+ * pw85_contact_function_method on the pairs of make_lane_pairs (r12 = 0, a
+ * matrix of condition 1e15, near-contact pairs) with bad ones among them
+ * (NaN r12, a matrix not positive definite, an infinite entry, a zero
+ * matrix): every result and status bitwise equal, for the whole array on 1
+ * and 2 threads and for arrays of m = 1 ... 9 pairs at every offset
+ * 0 ... 47. Relative error against mu2_ref <= 1e-14 on every third pair
+ * whose status is PW85_OK (r12 = 0 and the condition-1e15 pairs left out). */
+static void test_default_lanes(gconstpointer data) {
+  int const cls = *(const int *)data;
+  static lane_pairs s;
+  static pw85_result exp[LP], out[LP];
+  static int exp_st[LP], st[LP];
+  make_lane_pairs(&s, cls, 91 + cls);
+  s.r12[3 * 12 + 0] = NAN;
+  s.q1[6 * 23 + 3] = -1.0;
+  s.q2[6 * 35 + 4] = -INFINITY;
+  memset(s.q1 + 6 * 47, 0, 6 * sizeof(double));
+  int first = LP, n_ok = 0;
+  double max_err = 0.0;
+  for (int k = 0; k < LP; k++) {
+    exp_st[k] = pw85_contact_function_method(s.r12 + 3 * k, s.q1 + 6 * k, s.q2 + 6 * k,
+                                             PW85_METHOD_DEFAULT, exp + k);
+    if (exp_st[k] != PW85_OK && first == LP) first = k;
+    if (exp_st[k] != PW85_OK) continue;
+    n_ok++;
+    if (k % 3 == 0 && k % 61 != 9 && k % 97 != 3) {
+      double const ref = mu2_ref(s.r12 + 3 * k, s.q1 + 6 * k, s.q2 + 6 * k);
+      max_err = fmax(max_err, rel_error(exp[k].mu2, ref));
+    }
+  }
+  g_test_message("class %d: %d of %d pairs PW85_OK, max relative error %.3g", cls, n_ok, LP,
+                 max_err);
+  g_assert_cmpint(first, ==, 12);
+  g_assert_cmpint(n_ok, >, LP - LP / 10);
+  g_assert_cmpfloat(max_err, <=, 1e-14);
+  for (int threads = 1; threads <= 2; threads++) {
+    memset(out, 0xA5, sizeof out);
+    memset(st, 0xA5, sizeof st);
+    g_assert_cmpint(pw85_contact_function_pairs(LP, s.r12, s.q1, s.q2, PW85_METHOD_DEFAULT, out,
+                                                st, threads),
+                    ==, exp_st[first]);
+    g_assert_true(memcmp(out, exp, sizeof out) == 0);
+    g_assert_true(memcmp(st, exp_st, sizeof st) == 0);
+  }
+  for (int m = 1; m <= 9; m++)
+    for (int k0 = 0; k0 < 48; k0++) {
+      int lowest = PW85_OK;
+      for (int k = k0 + m - 1; k >= k0; k--)
+        if (exp_st[k] != PW85_OK) lowest = exp_st[k];
+      memset(out, 0xA5, m * sizeof(pw85_result));
+      memset(st, 0xA5, m * sizeof(int));
+      g_assert_cmpint(pw85_contact_function_pairs(m, s.r12 + 3 * k0, s.q1 + 6 * k0, s.q2 + 6 * k0,
+                                                  PW85_METHOD_DEFAULT, out, st, 1),
+                      ==, lowest);
+      g_assert_true(memcmp(out, exp + k0, m * sizeof(pw85_result)) == 0);
+      g_assert_true(memcmp(st, exp_st + k0, m * sizeof(int)) == 0);
+    }
+}
+
 static void test_huge_nthreads(gconstpointer data) {
   int const f = *(const int *)data;
   static pair_arrays s;
@@ -632,6 +834,14 @@ int main(int argc, char **argv) {
                        test_min_image);
   g_test_add_data_func("/pw85_scene_contact_function/min-image-tilt-3", &tilts[2],
                        test_min_image);
+  static const int classes[4] = {0, 1, 2, 3};
+  for (int c = 0; c < 4; c++) {
+    char path[64];
+    g_snprintf(path, sizeof path, "/pw85_overlap_pairs/lanes-class-%d", c);
+    g_test_add_data_func(path, &classes[c], test_overlap_lanes);
+    g_snprintf(path, sizeof path, "/pw85_contact_function_pairs/default-lanes-class-%d", c);
+    g_test_add_data_func(path, &classes[c], test_default_lanes);
+  }
   g_test_add_func("/pw85_scene_overlap/bounding-spheres", test_scene_reach);
   g_test_add_func("/pw85_scene_overlap/bad-input", test_new_bad_input);
   static const char *const f_names[F_COUNT] = {

@@ -1,8 +1,11 @@
 // extern "C" layer of the scene API: pw85_overlap, pw85_contact and the
 // batch calls over index pairs of a scene. Validation and status mapping
-// only; the work is in src/core/overlap/ and src/core/geometry/. The batch loops are parallelised with OpenMP when the
-// library is built with it; each pair is computed by exactly the code of the
-// one-pair function, so results do not depend on the number of threads.
+// only; the work is in src/core/overlap/ and src/core/geometry/. The batch
+// loops are parallelised with OpenMP when the library is built with it. Each
+// pair is computed by the one-pair function, or (overlap; DEFAULT) in a
+// vector lane that performs that function's operations on that pair alone
+// and gives its result bit for bit, else hands the pair to it; so results
+// do not depend on the number of threads, the position or the neighbours.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -113,6 +116,69 @@ int run_pairs(long long m, int *status, int nthreads, int chunk, One one) noexce
   return first_bad == m ? PW85_OK : one(first_bad);
 }
 
+// The loop of the calls whose pairs are computed w at a time (the lanes of
+// overlap_lanes or default_lanes): block(k0, res) computes pairs k0 ...
+// k0 + w - 1 (all < m), writes their outputs and their statuses res[0..w-1]; one(k)
+// computes pair k alone (the last m mod w pairs, and the
+// returned status) and must give the same outputs and status as block.
+// Otherwise as run_pairs: chunk pairs per dynamic chunk, the status of the
+// lowest failing k.
+template <int w, class Block, class One>
+int run_blocks(long long m, int *status, int nthreads, int chunk, Block block,
+               One one) noexcept {
+  long long const nb = m / w;
+  long long first_bad = m;
+#pragma omp parallel for schedule(dynamic, chunk / w) num_threads(threads_for(nthreads, m)) \
+    reduction(min : first_bad)
+  for (long long b = 0; b < nb + (m % w); ++b) {
+    int res[w];
+    long long k0;
+    int n;
+    if (b < nb) {
+      k0 = w * b;
+      n = w;
+      block(k0, res);
+    } else {
+      k0 = w * nb + (b - nb);
+      n = 1;
+      res[0] = one(k0);
+    }
+    for (int l = 0; l < n; ++l) {
+      if (status != nullptr) status[k0 + l] = res[l];
+      if (res[l] != PW85_OK && k0 + l < first_bad) first_bad = k0 + l;
+    }
+  }
+  return first_bad == m ? PW85_OK : one(first_bad);
+}
+
+// Overlap of pairs k0 ... k0 + kOverlapLanes - 1 through the lanes of
+// overlap_lanes (docs/batch.md, "Throughput"): pair(k, buf, r12, q1, q2)
+// gives pair k's arguments (r12 may point to buf, which it may fill; false:
+// the pair fails with
+// PW85_ERR_INVALID_ARGUMENT); a lane that overlap_lanes leaves undecided is
+// computed by pw85_overlap. Writes overlap[k] and res[k - k0] as the
+// one-pair loop would.
+template <class Pair>
+void overlap_block(long long k0, Pair pair, int *overlap, int res[]) noexcept {
+  constexpr int w = pw85::kOverlapLanes;
+  static constexpr double kZero[6] = {0, 0, 0, 0, 0, 0};  // r = 0: never decided by the lanes
+  double buf[w][3];
+  double const *rp[w], *q1p[w], *q2p[w];
+  bool ok[w];
+  for (int l = 0; l < w; ++l) {
+    ok[l] = pair(k0 + l, buf[l], rp[l], q1p[l], q2p[l]);
+    if (!ok[l]) rp[l] = q1p[l] = q2p[l] = kZero;
+  }
+  int v[w];
+  pw85::overlap_lanes(rp, q1p, q2p, v);
+  for (int l = 0; l < w; ++l) {
+    int const o = !ok[l] ? PW85_ERR_INVALID_ARGUMENT
+                         : v[l] >= 0 ? v[l] : pw85_overlap(rp[l], q1p[l], q2p[l]);
+    overlap[k0 + l] = o;
+    res[l] = o < 0 ? o : PW85_OK;
+  }
+}
+
 // The index-pair loop of the *_batch functions: checks the call's arguments,
 // then one(k, r12, i, j) computes pair k with r12 = c_j - c_i (r12 ==
 // nullptr: index out of range) and returns its status.
@@ -193,17 +259,6 @@ int pw85_contact(double const r12[PW85_DIM], double const q1[PW85_SYM],
   return s;
 }
 
-int pw85_overlap_batch(long long n, double const *centres, double const *q, long long m,
-                       long long const *pairs, int *overlap, int *status, int nthreads) {
-  return batch(n, centres, q, m, pairs, overlap, status, nthreads, 256,
-               [&](long long k, double const *r12, long long i, long long j) noexcept {
-                 int const res = r12 ? pw85_overlap(r12, q + 6 * i, q + 6 * j)
-                                     : PW85_ERR_INVALID_ARGUMENT;
-                 overlap[k] = res;
-                 return res < 0 ? res : PW85_OK;
-               });
-}
-
 int pw85_contact_function_batch(long long n, double const *centres, double const *q,
                                 long long m, long long const *pairs, double *out, int *status,
                                 int nthreads) {
@@ -230,9 +285,11 @@ int pw85_contact_batch(long long n, double const *centres, double const *q, long
 // ---- Per-pair arrays and periodic scenes ------------------------------------
 // pw85_*_pairs: pair k is (r12[3k..3k+2], q1[6k..6k+5], q2[6k..6k+5]).
 // pw85_scene_*: pair k is (i, j) = (pairs[2k], pairs[2k+1]) of the scene,
-// r12 = c_j - c_i, or its minimum image in the box. Each pair is computed by
-// the one-pair function on that r12, so its result does not depend on the
-// other pairs, on its position k or on the thread count (docs/batch.md).
+// r12 = c_j - c_i, or its minimum image in the box. Each pair's result is
+// the one-pair function's on that r12 (computed by it, or in a lane of
+// overlap_lanes / default_lanes with the same bits), so it does not depend
+// on the other pairs, on its position k or on the thread count
+// (docs/batch.md).
 
 namespace {
 
@@ -242,6 +299,44 @@ void fill_nan_result(pw85_result *res, int method) noexcept {
   fill_nan(&res->mu2_error, 1);
   res->iterations = 0;
   res->method = method;
+}
+
+// DEFAULT for pairs k0 ... k0 + kDefaultLanes - 1 through the lanes of
+// default_lanes (docs/batch.md, "Throughput"): pair(k, buf, r12, q1, q2)
+// gives pair k's arguments (as for overlap_block; false: the pair fails with
+// PW85_ERR_INVALID_ARGUMENT); a lane that default_lanes does not accept is
+// computed by pw85_contact_function_method. Writes res[k] and st[k - k0] as
+// the one-pair loop would.
+template <class Pair>
+void default_block(long long k0, Pair pair, pw85_result *res, int st[]) noexcept {
+  constexpr int w = pw85::kDefaultLanes;
+  static constexpr double kZero[6] = {0, 0, 0, 0, 0, 0};  // r = 0: never accepted by the lanes
+  double buf[w][3];
+  double const *rp[w], *q1p[w], *q2p[w];
+  bool ok[w];
+  for (int l = 0; l < w; ++l) {
+    ok[l] = pair(k0 + l, buf[l], rp[l], q1p[l], q2p[l]);
+    if (!ok[l]) rp[l] = q1p[l] = q2p[l] = kZero;
+  }
+  pw85::MethodResult mr[w];
+  bool acc[w];
+  pw85::default_lanes(rp, q1p, q2p, mr, acc);
+  for (int l = 0; l < w; ++l) {
+    pw85_result &o = res[k0 + l];
+    if (!ok[l]) {
+      fill_nan_result(&o, PW85_METHOD_DEFAULT);
+      st[l] = PW85_ERR_INVALID_ARGUMENT;
+    } else if (acc[l]) {
+      o.mu2 = mr[l].mu2;
+      o.lambda = mr[l].lambda;
+      o.mu2_error = mr[l].mu2_error;
+      o.iterations = mr[l].iterations;
+      o.method = mr[l].method;
+      st[l] = PW85_OK;
+    } else {
+      st[l] = pw85_contact_function_method(rp[l], q1p[l], q2p[l], PW85_METHOD_DEFAULT, &o);
+    }
+  }
 }
 
 // The checks shared by the calls of m > 0 pairs (pointers checked by the
@@ -368,6 +463,38 @@ int scene(long long n, double const *centres, double const *q, Box const &box, l
   });
 }
 
+// The loop of pw85_scene_overlap and pw85_overlap_batch after their
+// argument checks: blocks of kOverlapLanes pairs through overlap_block, the
+// rest (and the returned status) by pw85_overlap pair by pair.
+int scene_overlap(long long n, double const *centres, double const *q, Box const &box,
+                  long long m, long long const *pairs, int *overlap, int *status,
+                  int nthreads) noexcept {
+  auto one = [&](long long k) noexcept {
+    double r12[3];
+    long long i, j;
+    int const s = scene_r12(n, centres, q, box, pairs, k, r12, i, j);
+    int const res = s == PW85_OK ? pw85_overlap(r12, q + 6 * i, q + 6 * j) : s;
+    overlap[k] = res;
+    return res < 0 ? res : PW85_OK;
+  };
+  auto block = [&](long long k0, int res[]) noexcept {
+    overlap_block(
+        k0,
+        [&](long long k, double *buf, double const *&r, double const *&a,
+            double const *&b) noexcept {
+          prefetch_pair(n, centres, q, pairs, m, k);
+          long long i, j;
+          r = buf;
+          if (scene_r12(n, centres, q, box, pairs, k, buf, i, j) != PW85_OK) return false;
+          a = q + 6 * i;
+          b = q + 6 * j;
+          return true;
+        },
+        overlap, res);
+  };
+  return run_blocks<pw85::kOverlapLanes>(m, status, nthreads, 256, block, one);
+}
+
 inline bool scene_args(long long n, double const *centres, double const *q, double const *box,
                        long long m, long long const *pairs, void const *out, int nthreads,
                        Box &b) noexcept {
@@ -385,11 +512,24 @@ int pw85_overlap_pairs(long long m, double const *r12, double const *q1, double 
   if (!valid_count(m, nthreads) || r12 == nullptr || q1 == nullptr || q2 == nullptr ||
       overlap == nullptr)
     return PW85_ERR_INVALID_ARGUMENT;
-  return run_pairs(m, status, nthreads, 256, [&](long long k) noexcept {
+  auto one = [&](long long k) noexcept {
     int const res = pw85_overlap(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k);
     overlap[k] = res;
     return res < 0 ? res : PW85_OK;
-  });
+  };
+  auto block = [&](long long k0, int res[]) noexcept {
+    overlap_block(
+        k0,
+        [&](long long k, double *, double const *&r, double const *&a,
+            double const *&b) noexcept {
+          r = r12 + 3 * k;
+          a = q1 + 6 * k;
+          b = q2 + 6 * k;
+          return true;
+        },
+        overlap, res);
+  };
+  return run_blocks<pw85::kOverlapLanes>(m, status, nthreads, 256, block, one);
 }
 
 int pw85_contact_function_pairs(long long m, double const *r12, double const *q1,
@@ -400,9 +540,24 @@ int pw85_contact_function_pairs(long long m, double const *r12, double const *q1
       res == nullptr)
     return PW85_ERR_INVALID_ARGUMENT;
   if (!pw85::is_method(method)) return PW85_ERR_UNKNOWN_METHOD;
-  return run_pairs(m, status, nthreads, 64, [&](long long k) noexcept {
+  auto one = [&](long long k) noexcept {
     return pw85_contact_function_method(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k, method, res + k);
-  });
+  };
+  if (method != PW85_METHOD_DEFAULT || !pw85::default_lanes_available())
+    return run_pairs(m, status, nthreads, 64, one);
+  auto block = [&](long long k0, int st[]) noexcept {
+    default_block(
+        k0,
+        [&](long long k, double *, double const *&r, double const *&a,
+            double const *&b) noexcept {
+          r = r12 + 3 * k;
+          a = q1 + 6 * k;
+          b = q2 + 6 * k;
+          return true;
+        },
+        res, st);
+  };
+  return run_blocks<pw85::kDefaultLanes>(m, status, nthreads, 64, block, one);
 }
 
 int pw85_contact_pairs(long long m, double const *r12, double const *q1, double const *q2,
@@ -423,13 +578,16 @@ int pw85_scene_overlap(long long n, double const *centres, double const *q,
   Box b;
   if (!scene_args(n, centres, q, box, m, pairs, overlap, nthreads, b))
     return PW85_ERR_INVALID_ARGUMENT;
-  return scene(n, centres, q, b, m, pairs, status, nthreads, 256,
-               [&](long long k, double const *r12, long long i, long long j) noexcept {
-                 int const res = r12 ? pw85_overlap(r12, q + 6 * i, q + 6 * j)
-                                     : PW85_ERR_INVALID_ARGUMENT;
-                 overlap[k] = res;
-                 return res < 0 ? res : PW85_OK;
-               });
+  return scene_overlap(n, centres, q, b, m, pairs, overlap, status, nthreads);
+}
+
+int pw85_overlap_batch(long long n, double const *centres, double const *q, long long m,
+                       long long const *pairs, int *overlap, int *status, int nthreads) {
+  if (m == 0) return PW85_OK;
+  if (n < 0 || m < 0 || centres == nullptr || q == nullptr || pairs == nullptr ||
+      overlap == nullptr || nthreads < 0)
+    return PW85_ERR_INVALID_ARGUMENT;
+  return scene_overlap(n, centres, q, Box{}, m, pairs, overlap, status, nthreads);
 }
 
 int pw85_scene_contact_function(long long n, double const *centres, double const *q,
@@ -440,13 +598,35 @@ int pw85_scene_contact_function(long long n, double const *centres, double const
   if (!scene_args(n, centres, q, box, m, pairs, res, nthreads, b))
     return PW85_ERR_INVALID_ARGUMENT;
   if (!pw85::is_method(method)) return PW85_ERR_UNKNOWN_METHOD;
-  return scene(n, centres, q, b, m, pairs, status, nthreads, 64,
-               [&](long long k, double const *r12, long long i, long long j) noexcept {
-                 if (r12)
-                   return pw85_contact_function_method(r12, q + 6 * i, q + 6 * j, method, res + k);
-                 fill_nan_result(res + k, method);
-                 return int{PW85_ERR_INVALID_ARGUMENT};
-               });
+  auto one_r12 = [&](long long k, double const *r12, long long i, long long j) noexcept {
+    if (r12) return pw85_contact_function_method(r12, q + 6 * i, q + 6 * j, method, res + k);
+    fill_nan_result(res + k, method);
+    return int{PW85_ERR_INVALID_ARGUMENT};
+  };
+  if (method != PW85_METHOD_DEFAULT || !pw85::default_lanes_available())
+    return scene(n, centres, q, b, m, pairs, status, nthreads, 64, one_r12);
+  auto one = [&](long long k) noexcept {
+    double r12[3];
+    long long i, j;
+    int const s = scene_r12(n, centres, q, b, pairs, k, r12, i, j);
+    return one_r12(k, s == PW85_OK ? r12 : nullptr, i, j);
+  };
+  auto block = [&](long long k0, int st[]) noexcept {
+    default_block(
+        k0,
+        [&](long long k, double *buf, double const *&r, double const *&a,
+            double const *&c) noexcept {
+          prefetch_pair(n, centres, q, pairs, m, k);
+          long long i, j;
+          r = buf;
+          if (scene_r12(n, centres, q, b, pairs, k, buf, i, j) != PW85_OK) return false;
+          a = q + 6 * i;
+          c = q + 6 * j;
+          return true;
+        },
+        res, st);
+  };
+  return run_blocks<pw85::kDefaultLanes>(m, status, nthreads, 64, block, one);
 }
 
 int pw85_contact_derivatives_pairs(long long m, double const *r12, double const *q1,

@@ -102,6 +102,20 @@ Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
 Status contact_default_v4(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                           MethodResult &res) noexcept;
 #endif
+// DEFAULT for kDefaultLanes pairs at once, pair l = (r[l], q1[l], q2[l])
+// (default_lanes.cpp): the common path of contact_default in vector lanes.
+// accepted[l]: res[l] is what pw85_contact_function_method(..., DEFAULT,
+// ...) gives, bit for bit, with PW85_OK; otherwise res[l] is meaningless
+// and the caller makes the one-pair call. Any values are accepted (read
+// unchecked: 3 and 6 doubles at each pointer). Used only where
+// default_lanes_available() (not on x86-64-v4, where the one-pair DEFAULT
+// runs another algorithm first).
+constexpr int kDefaultLanes = 4;
+bool default_lanes_available() noexcept;
+void default_lanes(double const *const r[kDefaultLanes], double const *const q1[kDefaultLanes],
+                   double const *const q2[kDefaultLanes], MethodResult res[kDefaultLanes],
+                   bool accepted[kDefaultLanes]) noexcept;
+
 Status contact_newton(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                       MethodResult &res) noexcept;       // newton.cpp
 Status contact_rational(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,

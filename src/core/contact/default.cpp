@@ -33,6 +33,7 @@
 
 #include "common/fp.hpp"
 #include "contact/contact.hpp"
+#include "contact/default_params.hpp"
 #include "eval/f_adj.hpp"
 #include "eval/f_dd.hpp"
 #include "eval/f_rational_dd.hpp"
@@ -43,18 +44,8 @@
 namespace pw85 {
 
 namespace {
-// Fast path when the estimated relative error is below this.
-constexpr double kFastRel = 4e-15;
-// Rounding error of the stationary form (M11) relative to f: ~7u from its
-// last step in double (f_dd.hpp, stationary_combine) and the compensated
-// sums, with margin.
-constexpr double kStatRel = 10.0 * kU;
-constexpr double kExtrapGap = 1e-6;
-constexpr double kExtrapBudget = 1e-16;
+using namespace default_params;
 constexpr int kAdjMaxIter = 30;
-// Steps of the start (M22) and its stopping test (start.hpp).
-constexpr int kStartMin = 1, kStartMax = 6;
-constexpr double kStartTol = 3e-2;
 // The stationary form is tried when the first-order relative error of the
 // double phi is below this (its second-order error is then below ~4e-16).
 constexpr double kMaxFirstOrderRel = 1e-8;
@@ -64,11 +55,6 @@ constexpr double kDDSlopeRel = 0x1p-10;
 constexpr int kDDMaxNewton = 6;
 constexpr double kDDTrustRel = 0x1p-6;
 constexpr int kDDMaxBracket = 160;
-// Taylor coefficients 1/3! and 1/4! (rounded): multiplications, since the
-// divider is shared by every division and square root of the fast path
-// (docs/methods.md, (M21); a division by a constant is not turned into a
-// product without -freciprocal-math).
-constexpr double kInv6 = 1.0 / 6.0, kInv24 = 1.0 / 24.0;
 
 // DEFAULT's start, eq. (M22) (start.hpp).
 PW85_ALWAYS_INLINE double default_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {

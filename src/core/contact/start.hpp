@@ -179,13 +179,16 @@ PW85_ALWAYS_INLINE void start_quartics(Vec3 const &r, Sym3 const &q1, Sym3 const
   sq.a2[0] = dot(n1, p) * sc;
 }
 
+// Clamp of |delta| in the iteration of (M22) (above).
+constexpr double kLogNewtonClamp = 1.6;
+
 // The Newton iteration of (M22) from sq.x0 (start_quartics).
 template <int kMin, int kMax>
 PW85_ALWAYS_INLINE double log_newton_iterate(StartQuartics const &sq, double tol,
                                              Vec3 const &r, Sym3 const &q1,
                                              Sym3 const &q2) noexcept {
   static_assert(1 <= kMin && kMin <= kMax, "step counts");
-  constexpr double kClamp = 1.6;
+  constexpr double kClamp = kLogNewtonClamp;
   double const a10 = sq.a1[0], a11 = sq.a1[1], a12 = sq.a1[2], a13 = sq.a1[3], a14 = sq.a1[4];
   double const a20 = sq.a2[0], a21 = sq.a2[1], a22 = sq.a2[2], a23 = sq.a2[3], a24 = sq.a2[4];
   double x = sq.x0;

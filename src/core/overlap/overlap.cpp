@@ -22,12 +22,9 @@ namespace pw85 {
 
 namespace {
 
-// Error bound of an expression of at most 16 rounded operations on any path
-// (docs/overlap.md, eq. (O3)): |fl(E) - E| <= kC * fl(|E|) + kAbs.
-constexpr double kC = 32 * kU;
-// Absolute term covering gradual underflow for inputs in the safe range
-// |Q_ij| <= 2^60, |r_i| <= 2^60 (eq. (O3), (O9)).
-constexpr double kAbs = 0x1p-800;
+// Error bound (eq. (O3), overlap.hpp): |fl(E) - E| <= kC * fl(P) + kAbs.
+constexpr double kC = kOverlapFilterC;
+constexpr double kAbs = kOverlapFilterAbs;
 constexpr double kRangeHi = kOverlapRangeHi, kRangeLo = kOverlapRangeLo;
 
 // A bounded value in one SSE2 register: lane 0 is the computed value fl(E)

@@ -14,6 +14,7 @@
 // definiteness exactly and returns kNotSpd if it fails).
 #pragma once
 
+#include "common/fp.hpp"
 #include "common/status.hpp"
 #include "common/sym3.hpp"
 
@@ -40,6 +41,13 @@ Status overlap(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &verdict,
 constexpr double kOverlapRangeLo = 0x1p-60;
 constexpr double kOverlapRangeHi = 0x1p60;
 
+// Error bound of the filters' bounded values (docs/overlap.md, eq. (O3)):
+// |fl(E) - E| <= kOverlapFilterC fl(P) + kOverlapFilterAbs for an
+// expression of at most 16 rounded operations on any path, the absolute
+// term covering gradual underflow in the safe range (O9).
+constexpr double kOverlapFilterC = 32 * kU;
+constexpr double kOverlapFilterAbs = 0x1p-800;
+
 // The hot path of pw85_overlap: screens the arguments in one pass
 // (screen.hpp: finite, L D L^T pivots of Q1 and Q2 positive, magnitudes in
 // the safe range above) and returns false, with nothing written, when they
@@ -47,6 +55,16 @@ constexpr double kOverlapRangeHi = 0x1p60;
 // sets status and verdict exactly as overlap() would and returns true.
 bool overlap_screened(double const *r, double const *q1, double const *q2, int &verdict,
                       Status &status) noexcept;
+
+// The screen and the first certificates of the filters ((O11), (O13),
+// (O18) at tau0 and tau1) for kOverlapLanes pairs at once, pair l = (r[l], q1[l],
+// q2[l]) in lane l (overlap_lanes.cpp): verdict[l] = 1 or 0, exact and
+// equal to pw85_overlap's, or -1 when the lane is not decided there (the
+// caller then calls pw85_overlap). Reads 3 and 6 doubles at each pointer;
+// any values (NaN included) are accepted.
+constexpr int kOverlapLanes = 4;
+void overlap_lanes(double const *const r[kOverlapLanes], double const *const q1[kOverlapLanes],
+                   double const *const q2[kOverlapLanes], int verdict[kOverlapLanes]) noexcept;
 
 // The exact stage alone (no filter): same contract as overlap().
 Status overlap_exact(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,

@@ -1,0 +1,401 @@
+// PW85_METHOD_DEFAULT across pairs (docs/batch.md, "Throughput"): the
+// common path of default_body (default.cpp) for kDefaultLanes pairs at
+// once, pair l in lane l of each vector: the screen of the entry
+// (screen.hpp, screen_contact_pair), the start (M22) (start.hpp:
+// start_quartics, log_newton_iterate, newton_start), then the Halley
+// iteration (M8) with adjugate evaluations (f_adj.hpp, eq. (M16)) until the
+// quartic model (M18) is accepted with the first-order error of step 1
+// (eqs. (M10), (M17)) or of the stationary form (M11) below kFastRel mu2.
+// Every lane performs the scalar
+// operations of that code in the same order on its own pair (this file is
+// compiled without contraction, src/meson.build, so each lane's IEEE
+// operations are those of the one-pair call), so an accepted lane carries
+// the bits of pw85_contact_function_method; the others (screen failed, a
+// failed evaluation, step 2 needed, more than kLaneMaxIter steps) are returned undecided for the caller's one-pair call.
+#include <cmath>
+
+#include "common/fp.hpp"
+#include "common/isa.hpp"
+#include "common/screen.hpp"
+#include "contact/contact.hpp"
+#include "contact/default_params.hpp"
+#include "contact/start.hpp"
+#include "eval/f_dd.hpp"
+
+// Every function taking or returning a vector is always inline into the
+// variants below (no vector crosses a call).
+#if defined(__GNUC__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
+namespace pw85 {
+
+namespace {
+
+constexpr int W = kDefaultLanes;
+typedef double V __attribute__((vector_size(8 * W)));
+typedef long long M __attribute__((vector_size(8 * W)));  // lane masks: 0 or -1
+
+using namespace default_params;
+constexpr double kClamp = kLogNewtonClamp;
+// Halley steps tried in the lanes; the pairs that need more are left to the
+// one-pair call (which repeats them: same bits).
+constexpr int kLaneMaxIter = 8;
+
+constexpr long long kSign = static_cast<long long>(0x8000000000000000ULL);
+
+PW85_ALWAYS_INLINE V vabs(V x) noexcept {
+  return reinterpret_cast<V>(reinterpret_cast<M>(x) & (M{} + ~kSign));
+}
+PW85_ALWAYS_INLINE V select(M m, V a, V b) noexcept {
+  return reinterpret_cast<V>((m & reinterpret_cast<M>(a)) | (~m & reinterpret_cast<M>(b)));
+}
+// std::copysign(x, y), lane by lane.
+PW85_ALWAYS_INLINE V copysign(V x, V y) noexcept {
+  return reinterpret_cast<V>((reinterpret_cast<M>(x) & (M{} + ~kSign)) |
+                             (reinterpret_cast<M>(y) & (M{} + kSign)));
+}
+PW85_ALWAYS_INLINE V vsqrt(V x) noexcept {
+  V y;
+  for (int l = 0; l < W; ++l) y[l] = std::sqrt(x[l]);
+  return y;
+}
+// std::isfinite, lane by lane: x - x is 0 for finite x, NaN otherwise.
+PW85_ALWAYS_INLINE M finite(V x) noexcept { return (x - x) == 0.0; }
+PW85_ALWAYS_INLINE bool any(M m) noexcept {
+  long long a = 0;
+  for (int l = 0; l < W; ++l) a |= m[l];
+  return a != 0;
+}
+
+// Sym3 and Vec3 of lanes, and the sym3.hpp algebra in the same operation
+// order.
+struct S {
+  V a[kSym];
+  PW85_ALWAYS_INLINE V &operator[](int i) noexcept { return a[i]; }
+  PW85_ALWAYS_INLINE V const &operator[](int i) const noexcept { return a[i]; }
+};
+struct T {
+  V x[kDim];
+  PW85_ALWAYS_INLINE V &operator[](int i) noexcept { return x[i]; }
+  PW85_ALWAYS_INLINE V const &operator[](int i) const noexcept { return x[i]; }
+};
+
+PW85_ALWAYS_INLINE V dot(T const &u, T const &v) noexcept {
+  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+}
+PW85_ALWAYS_INLINE T multiply(S const &a, T const &x) noexcept {
+  return T{{a[0] * x[0] + a[1] * x[1] + a[2] * x[2], a[1] * x[0] + a[3] * x[1] + a[4] * x[2],
+            a[2] * x[0] + a[4] * x[1] + a[5] * x[2]}};
+}
+PW85_ALWAYS_INLINE S adjugate3(S const &q) noexcept {
+  return S{{q[3] * q[5] - q[4] * q[4], q[2] * q[4] - q[1] * q[5], q[1] * q[4] - q[2] * q[3],
+            q[0] * q[5] - q[2] * q[2], q[1] * q[2] - q[0] * q[4], q[0] * q[3] - q[1] * q[1]}};
+}
+PW85_ALWAYS_INLINE V det_with_adjugate(S const &q, S const &c) noexcept {
+  return q[0] * c[0] + q[1] * c[1] + q[2] * c[2];
+}
+PW85_ALWAYS_INLINE S interpolate(S const &q1, S const &q2, V lambda) noexcept {
+  S q;
+  V const one_minus = 1.0 - lambda;
+  for (int i = 0; i < kSym; ++i) q[i] = one_minus * q1[i] + lambda * q2[i];
+  return q;
+}
+
+// start.hpp: detail::support_squares, detail::tree_times, newton_start,
+// start_quartics<true>, log_newton_iterate<kStartMin, kStartMax>.
+PW85_ALWAYS_INLINE void support_squares(T const &n, S const &q1, S const &q2, V &a1,
+                                        V &a2) noexcept {
+  V const n00 = n[0] * n[0], n11 = n[1] * n[1], n22 = n[2] * n[2];
+  V const n01 = 2.0 * n[0] * n[1], n02 = 2.0 * n[0] * n[2], n12 = 2.0 * n[1] * n[2];
+  a1 = (q1[0] * n00 + q1[3] * n11) + (q1[5] * n22 + q1[1] * n01) + (q1[2] * n02 + q1[4] * n12);
+  a2 = (q2[0] * n00 + q2[3] * n11) + (q2[5] * n22 + q2[1] * n01) + (q2[2] * n02 + q2[4] * n12);
+}
+
+PW85_ALWAYS_INLINE T tree_times(S const &c, T const &r) noexcept {
+  return T{{c[0] * r[0] + (c[1] * r[1] + c[2] * r[2]), c[1] * r[0] + (c[3] * r[1] + c[4] * r[2]),
+            c[2] * r[0] + (c[4] * r[1] + c[5] * r[2])}};
+}
+
+PW85_ALWAYS_INLINE V newton_start(T const &r, S const &q1, S const &q2) noexcept {
+  V const h1 = vsqrt(dot(r, multiply(q1, r)));
+  V const h2 = vsqrt(dot(r, multiply(q2, r)));
+  V const l0 = h1 / (h1 + h2);
+  return select((l0 > 0.0) & (l0 < 1.0), l0, V{} + 0.5);
+}
+
+PW85_ALWAYS_INLINE V default_start(T const &r, S const &q1, S const &q2) noexcept {
+  // start_quartics<true>
+  S q12;
+  for (int i = 0; i < kSym; ++i) q12[i] = q1[i] + q2[i];
+  S const c1 = adjugate3(q1), c2 = adjugate3(q2);
+  T const n12 = tree_times(adjugate3(q12), r);
+  T const n1 = tree_times(c1, r), n2 = tree_times(c2, r);
+  T m;
+  for (int i = 0; i < kDim; ++i) m[i] = n12[i] - (n1[i] + n2[i]);
+  V s1, s2;
+  support_squares(n12, q1, q2, s1, s2);
+  V const x0 = vsqrt(s1 / s2);
+  V const sc = 1.0 / (s1 + s2);
+  V const det1 = det_with_adjugate(q1, c1) * sc;
+  V const det2 = det_with_adjugate(q2, c2) * sc;
+  V const t1 = ((c1[0] * q2[0] + c1[3] * q2[3]) + c1[5] * q2[5] +
+                2.0 * ((c1[1] * q2[1] + c1[2] * q2[2]) + c1[4] * q2[4])) * sc;
+  V const t2 = ((q1[0] * c2[0] + q1[3] * c2[3]) + q1[5] * c2[5] +
+                2.0 * ((q1[1] * c2[1] + q1[2] * c2[2]) + q1[4] * c2[4])) * sc;
+  V const rn1 = dot(r, n1), rm = dot(r, m), rn2 = dot(r, n2);
+  T const p = multiply(q2, n1), q = multiply(q1, n2);
+  V const mp = dot(m, p) * sc, mq = dot(m, q) * sc;
+  V const a10 = det1 * rn1;
+  V const a11 = 2.0 * det1 * rm;
+  V const a12 = (t1 * rm - mp) + 2.0 * det1 * rn2;
+  V const a13 = 2.0 * mq;
+  V const a14 = dot(n2, q) * sc;
+  V const a24 = det2 * rn2;
+  V const a23 = 2.0 * det2 * rm;
+  V const a22 = (t2 * rm - mq) + 2.0 * det2 * rn1;
+  V const a21 = 2.0 * mp;
+  V const a20 = dot(n1, p) * sc;
+  // log_newton_iterate<kStartMin, kStartMax>
+  V x = x0;
+  V const b12 = 2.0 * a12, b13 = 3.0 * a13, b14 = 4.0 * a14;
+  V const b22 = 2.0 * a22, b23 = 3.0 * a23, b24 = 4.0 * a24;
+  V out{};
+  M done{};
+  for (int k = 1;; ++k) {
+    V const x2 = x * x;
+    V const a1 = (a10 + a11 * x) + x2 * ((a12 + a13 * x) + x2 * a14);
+    V const a2 = (a20 + a21 * x) + x2 * ((a22 + a23 * x) + x2 * a24);
+    V const d1 = (a11 + b12 * x) + x2 * (b13 + b14 * x);
+    V const d2 = (a21 + b22 * x) + x2 * (b23 + b24 * x);
+    V const b = x2 * a2;
+    V n = a1 - b, dd = a1 + b;
+    V const w = 2.0 * (a1 * a2);
+    V const g = w - x * (d1 * a2 - d2 * a1);
+    M const gp = g > 0.0;
+    n = select(gp, n * w, n);
+    dd = select(gp, dd * g, dd);
+    V const lim = kClamp * dd;
+    V const nc = select(vabs(n) > lim, copysign(lim, n), n);
+    V const num = x * (2.0 * dd + nc), den = 2.0 * dd - nc;
+    static_assert(kStartMin == 1, "the test k >= kStartMin holds from the first step");
+    M stop = vabs(n) <= kStartTol * dd;
+    if (k >= kStartMax) stop = ~M{};
+    stop &= ~done;
+    if (any(stop)) {
+      V const l = num / (den + num);
+      out = select(stop, l, out);
+      done |= stop;
+      if (k >= kStartMax || !any(~done)) break;
+    }
+    x = num / den;
+  }
+  M const in = (out > 0.0) & (out < 1.0);
+  if (any(~in)) out = select(in, out, newton_start(r, q1, q2));
+  return out;
+}
+
+// f_adj.hpp: f_eval_adj with set_f_from_phi (f_derivatives.hpp).
+struct E {
+  V lambda, phi, dphi, f, df, d2f, d3f, d4f, inv_det;
+  S q;
+  T s;
+};
+
+PW85_ALWAYS_INLINE M f_eval_adj(V lambda, T const &r, S const &q1, S const &q2, S const &d,
+                                E &e) noexcept {
+  e.lambda = lambda;
+  e.q = interpolate(q1, q2, lambda);
+  S const &q = e.q;
+  S const c = adjugate3(q);
+  V const det = det_with_adjugate(q, c);
+  T const s0 = multiply(c, r);
+  T const u0 = multiply(d, s0);
+  T const v0 = multiply(c, u0);
+  T const w0 = multiply(d, v0);
+  T const x0 = multiply(c, w0);
+  V const id = 1.0 / det, id2 = id * id;
+  e.inv_det = id;
+  V const id3 = id2 * id, id4 = id2 * id2;
+  e.s = T{{s0[0] * id, s0[1] * id, s0[2] * id}};
+  V const phi = dot(r, s0) * id;
+  V const phi1 = -dot(s0, u0) * id2;
+  V const phi2 = 2.0 * dot(u0, v0) * id3;
+  V const phi3 = -6.0 * dot(v0, w0) * id4;
+  V const phi4 = 24.0 * dot(w0, x0) * (id4 * id);
+  // set_f_from_phi
+  V const p = lambda * (1.0 - lambda);
+  V const p1 = 1.0 - 2.0 * lambda;
+  e.phi = phi;
+  e.dphi = phi1;
+  e.f = p * phi;
+  e.df = p1 * phi + p * phi1;
+  e.d2f = -2.0 * phi + 2.0 * p1 * phi1 + p * phi2;
+  e.d3f = -6.0 * phi1 + 3.0 * p1 * phi2 + p * phi3;
+  e.d4f = -12.0 * phi2 + 4.0 * (1.0 - 2.0 * lambda) * phi3 + lambda * (1.0 - lambda) * phi4;
+  return (det > 0.0) & (phi > 0.0) & finite(e.f) & finite(e.df) & finite(e.d2f) &
+         finite(e.d3f) & finite(e.d4f);
+}
+
+// f_adj.hpp: adj_error.
+PW85_ALWAYS_INLINE T adj_error(E const &e, T const &r, S const &q1, S const &q2) noexcept {
+  S qa;
+  V const lm = 1.0 - e.lambda;
+  for (int i = 0; i < kSym; ++i) qa[i] = lm * vabs(q1[i]) + e.lambda * vabs(q2[i]);
+  S const aa{{qa[3] * qa[5] + qa[4] * qa[4], qa[2] * qa[4] + qa[1] * qa[5],
+              qa[1] * qa[4] + qa[2] * qa[3], qa[0] * qa[5] + qa[2] * qa[2],
+              qa[1] * qa[2] + qa[0] * qa[4], qa[0] * qa[3] + qa[1] * qa[1]}};
+  V const det_abs = qa[0] * aa[0] + qa[1] * aa[1] + qa[2] * aa[2];
+  V const k = 4.0 * kU * e.inv_det;
+  V const rel_det = k * det_abs;
+  T const ar{{vabs(r[0]), vabs(r[1]), vabs(r[2])}};
+  T const t = multiply(aa, ar);
+  T err;
+  for (int i = 0; i < kDim; ++i) err[i] = k * t[i] + rel_det * vabs(e.s[i]);
+  return err;
+}
+
+// The body, compiled once per instruction-set level below.
+PW85_ALWAYS_INLINE void lanes_body(double const *const rp[W], double const *const q1p[W],
+                                   double const *const q2p[W], MethodResult res[W],
+                                   bool accepted[W]) noexcept {
+  T r;
+  S q1, q2;
+  M active{};
+  for (int l = 0; l < W; ++l) {
+    for (int i = 0; i < kDim; ++i) r[i][l] = rp[l][i];
+    for (int i = 0; i < kSym; ++i) {
+      q1[i][l] = q1p[l][i];
+      q2[i][l] = q2p[l][i];
+    }
+    active[l] = screen_contact_pair(rp[l], q1p[l], q2p[l], kSafeLo, kSafeHi) ? -1 : 0;
+  }
+  M ok{};  // lanes accepted
+  V mu2{}, lam{}, err{};
+  M iters{};
+  if (any(active)) {
+    S d;
+    for (int i = 0; i < kSym; ++i) d[i] = q2[i] - q1[i];
+    V lambda = default_start(r, q1, q2);
+    V lo{}, hi = V{} + 1.0;
+    E e;
+    for (int it = 0; it < kLaneMaxIter && any(active); ++it) {
+      iters -= active;  // + 1 in the active lanes
+      active &= f_eval_adj(lambda, r, q1, q2, d, e);
+      // halley_decide (default.cpp)
+      M const up = e.df > 0.0;
+      lo = select(up, lambda, lo);
+      hi = select(up, hi, lambda);
+      V const a = -e.d2f;
+      V const den = 2.0 * e.d2f * e.d2f - e.df * e.d3f;
+      M const apos = a > 0.0;
+      V const step = select(apos & (den > 0.0), -2.0 * e.df * e.d2f / den,
+                            select(apos, e.df / a, 0.5 * (lo + hi) - lambda));
+      V const next = lambda + step;
+      M const inside = (next > lo) & (next < hi);
+      M const tiny = vabs(step) <= 2.0 * kU * lambda;
+      M const near = active & apos & (tiny | (inside & (e.df * e.df <= 2.0 * a * kExtrapGap * e.f)));
+      if (any(near)) {
+        M fast_or_stat;
+        // Step 1 of default_body at a lambda near enough for the model.
+        T const Er = adj_error(e, r, q1, q2);
+        V const p = lambda * (1.0 - lambda), p1 = vabs(1.0 - 2.0 * lambda);
+        T const as{{vabs(e.s[0]), vabs(e.s[1]), vabs(e.s[2])}};
+        S da;
+        for (int i = 0; i < kSym; ++i) da[i] = vabs(d[i]);
+        T const ar{{vabs(r[0]), vabs(r[1]), vabs(r[2])}};
+        V const edf = p1 * dot(ar, Er) + 2.0 * p * dot(as, multiply(da, Er)) +
+                      4.0 * kU * (p1 * e.phi + p * vabs(e.dphi));
+        V const h = select(tiny, V{}, step);
+        // model_error
+        V const h2 = h * h;
+        V const trunc = vabs(e.d4f * h2 * h2) * kInv24;
+        V const err_l = edf * vabs(h) + edf * edf / (2.0 * a) + 2.0 * trunc;
+        M const done =
+            near & ((err_l <= kExtrapBudget * e.f) | (vabs(e.df) <= 2.0 * edf) | tiny);
+        // model_increment
+        V const corr =
+            h * (e.df + h * (0.5 * e.d2f + h * (e.d3f * kInv6 + h * e.d4f * kInv24)));
+        V const err1 = p * (dot(ar, Er) + 3.0 * kU * dot(ar, as)) + 4.0 * kU * e.f + err_l;
+        M const fast = done & (err1 <= kFastRel * e.f);
+        V m = e.f + corr, em = err1;
+        // The stationary form (M11) where the first-order error is too large:
+        // second-order error p E^T |Q| E tested first; f_stationary itself
+        // is the one-pair call's (its instruction-set variants included),
+        // called lane by lane.
+        M const slow = done & ~fast;
+        if (any(slow)) {
+          S qa;
+          for (int i = 0; i < kSym; ++i) qa[i] = vabs(e.q[i]);
+          V const err2 = p * dot(Er, multiply(qa, Er)) + err_l;
+          M const try_stat = slow & ~(err2 + e.f * kStatRel > 0.999 * kFastRel * e.f);
+          V fs{};
+          for (int l = 0; l < W; ++l) {
+            if (try_stat[l] == 0) continue;
+            fs[l] = f_stationary(lambda[l], Vec3{{r[0][l], r[1][l], r[2][l]}},
+                                 Sym3{{q1[0][l], q1[1][l], q1[2][l], q1[3][l], q1[4][l], q1[5][l]}},
+                                 Sym3{{q2[0][l], q2[1][l], q2[2][l], q2[3][l], q2[4][l], q2[5][l]}},
+                                 Vec3{{e.s[0][l], e.s[1][l], e.s[2][l]}});
+          }
+          V const ms = fs + corr;
+          V const es = ms * kStatRel + err2;
+          M const stat_ok = try_stat & (es <= kFastRel * ms);
+          m = select(stat_ok, ms, m);
+          em = select(stat_ok, es, em);
+          fast_or_stat = fast | stat_ok;
+        } else {
+          fast_or_stat = fast;
+        }
+        V const lh = lambda + h;
+        // The promise checked after every method (methods.cpp, checked).
+        M const take = fast_or_stat & (m >= 0.0) & (lh >= 0.0) & (lh <= 1.0) & (em == em);
+        mu2 = select(take, m, mu2);
+        lam = select(take, lh, lam);
+        err = select(take, em, err);
+        ok |= take;
+        active &= ~done;  // accepted, or step 2 needed
+      }
+      active &= ~tiny;  // step 2 needed
+      lambda = select(inside, next, 0.5 * (lo + hi));
+    }
+  }
+  for (int l = 0; l < W; ++l) {
+    accepted[l] = ok[l] != 0;
+    res[l].mu2 = mu2[l];
+    res[l].lambda = lam[l];
+    res[l].mu2_error = err[l];
+    res[l].iterations = static_cast<int>(iters[l]);
+    res[l].method = kMethodDefault;
+  }
+}
+
+#if PW85_ISA_LEVELS
+PW85_TARGET_V3 void lanes_v3(double const *const rp[W], double const *const q1p[W],
+                             double const *const q2p[W], MethodResult res[W],
+                             bool accepted[W]) noexcept {
+  lanes_body(rp, q1p, q2p, res, accepted);
+}
+#endif
+
+}  // namespace
+
+bool default_lanes_available() noexcept {
+#if PW85_ISA_LEVELS
+  // On x86-64-v4 the one-pair DEFAULT runs the rational step first
+  // (default.cpp), whose bits these lanes do not reproduce.
+  return !isa::has_v4();
+#else
+  return true;
+#endif
+}
+
+void default_lanes(double const *const r[kDefaultLanes], double const *const q1[kDefaultLanes],
+                   double const *const q2[kDefaultLanes], MethodResult res[kDefaultLanes],
+                   bool accepted[kDefaultLanes]) noexcept {
+#if PW85_ISA_LEVELS
+  if (isa::has_v3()) return lanes_v3(r, q1, q2, res, accepted);
+#endif
+  lanes_body(r, q1, q2, res, accepted);
+}
+
+}  // namespace pw85
