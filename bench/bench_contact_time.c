@@ -18,7 +18,9 @@
  * err: |t - t_c| / t_max over the trajectories with mu^2 < 1 - 1e-12
  * somewhere (t_c the reference crossing of mu^2 = 1). Evaluations: those of
  * pw85_contact_time_ex. ns per call: thread CPU time of one pass over the
- * class, median over the repetitions (spread: min-max).
+ * trajectories of a kind, median over the repetitions (spread: min-max); baseline
+ * in the same passes: one PW85_METHOD_DEFAULT evaluation at t = 0 per
+ * trajectory (ns_default), and the cost per evaluation over it.
  *
  *   build/bench/bench_contact_time [--verbose] [--n 1000] [--reps 5] [--seed 42] > docs/bench_contact_time.csv
  *
@@ -47,6 +49,8 @@ static double median(double *v, int n) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+static volatile double sink;
+
 static const char *kind_name[CT_KINDS] = {"random", "grazing", "spinning"};
 
 int main(int argc, char **argv) {
@@ -60,10 +64,10 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--seed")) seed = strtoull(argv[i + 1], NULL, 10);
     else { fprintf(stderr, "unknown option %s\n", argv[i]); return 2; }
   }
-  if (n < 10 || reps < 1) return 2;
+  if (n < 10 || reps < 1 || reps > 64) return 2;
   const double lo[4] = {0.5, 0.1, 0.01, 0.001}, hi[4] = {2, 10, 100, 1000};
   printf("class,kind,n,contacts,missed,early,failed,max_err,median_err,median_eval,max_eval,"
-         "ns_median,ns_min,ns_max,ref_median_eval\n");
+         "ns_median,ns_min,ns_max,ns_default,ns_per_eval_over_default,ref_median_eval\n");
   fprintf(stderr, "%-5s %-8s %6s %6s %6s %5s %6s %9s %9s %6s %7s %9s %9s\n", "class", "kind", "n",
           "contact", "missed", "early", "failed", "max_err", "med_err", "med_ev", "max_ev",
           "ns/call", "spread");
@@ -77,17 +81,32 @@ int main(int argc, char **argv) {
       kind[i] = i % 5 < 3 ? CT_RANDOM : (i % 5 == 3 ? CT_GRAZING : CT_SPINNING);
       ct_make(&g, lo[c], hi[c], kind[i], i / 5, &tr[i]);
     }
+    double sum = 0, nsk[CT_KINDS][64], nsd[64];
     for (int r = 0; r < reps; r++) {
-      double t0 = thread_ns();
-      for (int i = 0; i < n; i++) {
-        int e;
-        st[i] = pw85_contact_time_ex(tr[i].r0, tr[i].v, tr[i].q1, tr[i].w1, tr[i].q2, tr[i].w2,
-                                     tr[i].t_max, &t[i], &e);
-        ev[i] = e;
+      for (int k = 0; k < CT_KINDS; k++) {
+        double const t0 = thread_ns();
+        int cnt = 0;
+        for (int i = 0; i < n; i++) {
+          if (kind[i] != k) continue;
+          int e;
+          st[i] = pw85_contact_time_ex(tr[i].r0, tr[i].v, tr[i].q1, tr[i].w1, tr[i].q2, tr[i].w2,
+                                       tr[i].t_max, &t[i], &e);
+          ev[i] = e;
+          cnt++;
+        }
+        nsk[k][r] = (thread_ns() - t0) / cnt;
       }
-      ns[r] = (thread_ns() - t0) / n;
+      /* baseline in the same pass: one DEFAULT evaluation at t = 0 */
+      double const t0 = thread_ns();
+      for (int i = 0; i < n; i++) {
+        pw85_result res;
+        pw85_contact_function_method(tr[i].r0, tr[i].q1, tr[i].q2, PW85_METHOD_DEFAULT, &res);
+        sum += res.mu2;
+      }
+      nsd[r] = (thread_ns() - t0) / n;
     }
-    double const nsmed = median(ns, reps), nsmin = ns[0], nsmax = ns[reps - 1];
+    sink = sum;
+    double const nsdef = median(nsd, reps);
     for (int k = 0; k < CT_KINDS; k++) {
       int cnt = 0, contacts = 0, missed = 0, early = 0, failed = 0, nerr = 0;
       double maxerr = 0, evk[n], revk[n];
@@ -126,12 +145,15 @@ int main(int argc, char **argv) {
         }
       }
       double const mederr = nerr ? median(err, nerr) : 0;
+      double evsum = 0;
+      for (int i = 0; i < cnt; i++) evsum += evk[i];
+      double const nsmed = median(nsk[k], reps), nsmin = nsk[k][0], nsmax = nsk[k][reps - 1];
       double maxev = 0;
       for (int i = 0; i < cnt; i++) maxev = fmax(maxev, evk[i]);
       double const medev = median(evk, cnt), medrev = median(revk, cnt);
-      printf("%d,%s,%d,%d,%d,%d,%d,%.3g,%.3g,%g,%g,%.0f,%.0f,%.0f,%g\n", c, kind_name[k], cnt,
-             contacts, missed, early, failed, maxerr, mederr, medev, maxev, nsmed, nsmin, nsmax,
-             medrev);
+      printf("%d,%s,%d,%d,%d,%d,%d,%.3g,%.3g,%g,%g,%.0f,%.0f,%.0f,%.1f,%.2f,%g\n", c, kind_name[k],
+             cnt, contacts, missed, early, failed, maxerr, mederr, medev, maxev, nsmed, nsmin,
+             nsmax, nsdef, nsmed / (evsum / cnt) / nsdef, medrev);
       fprintf(stderr, "%-5d %-8s %6d %6d %6d %5d %6d %9.2e %9.2e %6g %7g %9.0f %4.0f-%.0f\n", c,
               kind_name[k], cnt, contacts, missed, early, failed, maxerr, mederr, medev, maxev,
               nsmed, nsmin, nsmax);

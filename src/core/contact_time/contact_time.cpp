@@ -30,16 +30,19 @@ constexpr double kBand = 1e-13;
 // search at its end: a crossing, where g is the tangent of mu.
 constexpr double kBandStep = 1e-6;
 
-RateBounds rate_bounds(Sym3 const &q1, Vec3 const &w1, Sym3 const &q2, Vec3 const &w2) noexcept {
-  RateBounds b{0.0, 0.0};
-  Sym3 const *q[2] = {&q1, &q2};
+RateBounds rate_bounds(AxisBounds const &a1, Vec3 const &w1, AxisBounds const &a2,
+                       Vec3 const &w2) noexcept {
+  RateBounds b{0.0, 0.0, {0.0, 0.0}, {0.0, 0.0}, {a1.a_min, a2.a_min}};
+  AxisBounds const *a[2] = {&a1, &a2};
   Vec3 const *w[2] = {&w1, &w2};
   for (int i = 0; i < 2; ++i) {
     double const wn = norm(*w[i]);
     if (wn == 0.0) continue;
-    AxisBounds const a = axis_bounds(*q[i]);
-    b.om += wn * (a.a_max - a.a_min);                                             // (T3)
-    b.Om += wn * wn * ((a.a_max - a.a_min) * (a.a_max + a.a_min)) / a.a_min;      // (T4)
+    double const hi = a[i]->a_max, lo = a[i]->a_min;
+    b.om_i[i] = wn * (hi - lo) * (1.0 + 1e-12);          // (T3)
+    b.c_i[i] = wn * wn * ((hi - lo) * (hi + lo)) * (1.0 + 1e-12);
+    b.om += b.om_i[i];
+    b.Om += b.c_i[i] / lo;                                // (T4)
   }
   b.om *= 1.0 + 1e-12;
   b.Om *= 1.0 + 1e-12;
@@ -90,8 +93,9 @@ Status contact_time(Vec3 const &r12, Vec3 const &v12, Sym3 const &q1, Vec3 const
   double const vn = norm(v);
   if (!std::isfinite(norm(r0) + t_max * vn) || !std::isfinite(t_max * (norm(w1) + norm(w2))))
     return kInvalidArgument;
-  RateBounds const b = rate_bounds(a1, w1, a2, w2);
-  double const rho = axis_bounds(a1).a_min + axis_bounds(a2).a_min;
+  AxisBounds const ax1 = axis_bounds(a1), ax2 = axis_bounds(a2);
+  RateBounds const b = rate_bounds(ax1, w1, ax2, w2);
+  double const rho = ax1.a_min + ax2.a_min;
 
   double t = 0.0;
   for (;;) {
