@@ -79,7 +79,8 @@ Status contact_time(Vec3 const &r12, Vec3 const &v12, Sym3 const &q1, Vec3 const
   // unchanged by r -> 2^-e r, v -> 2^-e v, Q -> 2^-2e Q (exact).
   double qmax = 0.0;
   for (int i = 0; i < kSym; ++i) qmax = std::fmax(qmax, std::fmax(std::fabs(q1[i]), std::fabs(q2[i])));
-  int const e = std::ilogb(qmax) / 2;
+  int const eq = std::ilogb(qmax);
+  int const e = (eq - (eq & 1)) / 2;  // floor(eq / 2): inputs scaled by 2^k give 2^(e + k)
   Vec3 r0, v;
   Sym3 a1, a2;
   for (int i = 0; i < kDim; ++i) {
@@ -108,7 +109,9 @@ Status contact_time(Vec3 const &r12, Vec3 const &v12, Sym3 const &q1, Vec3 const
     MethodResult mr;
     Status const s = contact_method(kMethodDefault, r, p1, p2, mr);
     ++res.evaluations;
-    if (s != kOk && s != kInaccurate) {
+    // kRange: mu^2 beyond the double range, written rounded (+inf or tiny),
+    // still decides; lambda is that of the rescaled problem.
+    if (s != kOk && s != kInaccurate && s != kRange) {
       res.t = t;
       return kNoConvergence;
     }
