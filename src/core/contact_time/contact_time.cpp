@@ -29,6 +29,9 @@ constexpr double kBand = 1e-13;
 // In that band, a certified step shorter than kBandStep t_max ends the
 // search at its end: a crossing, where g is the tangent of mu.
 constexpr double kBandStep = 1e-6;
+// A step below half an ulp of t_k (a crossing steeper than mu^2 changes
+// across one ulp of t) ends the search at t_k when mu^2(t_k) <= 1 + kStuck.
+constexpr double kStuck = 1e-6;
 
 RateBounds rate_bounds(AxisBounds const &a1, Vec3 const &w1, AxisBounds const &a2,
                        Vec3 const &w2) noexcept {
@@ -148,6 +151,10 @@ Status contact_time(Vec3 const &r12, Vec3 const &v12, Sym3 const &q1, Vec3 const
     if (band && tau <= kBandStep * t_max) {  // the last, Newton-like, step (T6)
       res.t = t + tau;
       return kOk;
+    }
+    if (t + tau == t) {  // below the resolution of t (T6)
+      res.t = t;
+      return mr.mu2 <= 1.0 + kStuck ? kOk : kNoConvergence;
     }
     t += tau;
   }
