@@ -598,10 +598,11 @@ PW85_API int pw85_scene_contact_derivatives(long long n, double const *centres,
  * r12(t) = r12 + t v12 and each ellipsoid rotates about its centre with
  * constant angular velocity w_i: Q_i(t) = R_i(t) Q_i R_i(t)^T,
  * R_i(t) = exp(t [w_i]x). Writes to *t the first time t_c in [0, t_max] at
- * which mu^2(t) <= 1 (to ~1e-15 t_c for a transversal crossing; 0 when the
- * pair overlaps or touches at t = 0), or +INFINITY when mu^2 > 1 on all of
- * [0, t_max]. Certified: *t is never later than the first t with
- * mu^2(t) < 1 - 1e-12; trajectories whose minimum of mu^2 lies in
+ * which mu^2(t) <= 1 (within a few ulps at a transversal crossing; 0 when
+ * the pair overlaps or touches at t = 0), or +INFINITY when mu^2 > 1 on all
+ * of [0, t_max]. Certified: *t is never later than the first t with
+ * mu^2(t) < 1 - 1e-12, nor earlier than the first t with
+ * mu^2(t) <= 1 + 1e-13; trajectories whose minimum of mu^2 lies in
  * [1 - 1e-12, 1 + 1e-13] may go either way. Returns PW85_OK,
  * PW85_ERR_INVALID_ARGUMENT (NULL, NaN or infinite value, t_max <= 0, or
  * r12 + t v12 or t w_i overflowing within the horizon; *t is NaN),
