@@ -214,16 +214,23 @@ static inline double ctr_bisect(const ct_traj *tr, ctr_real a, ctr_real b, doubl
 
 static inline void ct_reference(const ct_traj *tr, ct_ref *out) {
   int n = ct_grid_points(tr);
-  ctr_real *mu = (ctr_real *)malloc(sizeof(ctr_real) * (n + 1));
-  ctr_real *lm = (ctr_real *)malloc(sizeof(ctr_real) * (n + 1));
-  ctr_real h = (ctr_real)tr->t_max / n, lam = 0.5L;
+  ctr_real *mu = (ctr_real *)calloc(n + 1, sizeof(ctr_real));
+  ctr_real *lm = (ctr_real *)calloc(n + 1, sizeof(ctr_real));
+  for (int k = 0; k < CT_LEVELS; k++) out->t[k] = NAN;
+  out->min_mu2 = NAN;
+  out->evaluations = 0;
+  if (mu == NULL || lm == NULL) {
+    free(mu);
+    free(lm);
+    return;
+  }
+  ctr_real h = (ctr_real)tr->t_max / n, lam = 0.5L, best = INFINITY;
   long ev = 0;
   for (int j = 0; j <= n; j++) {
     mu[j] = ctr_mu2_at(tr, j * h, &lam);
     lm[j] = lam;
     ev++;
   }
-  ctr_real best = mu[0];
   for (int k = 0; k < CT_LEVELS; k++) out->t[k] = INFINITY;
   for (int j = 0; j <= n; j++) {
     if (mu[j] < best) best = mu[j];
