@@ -607,9 +607,9 @@ PW85_API int pw85_scene_contact_derivatives(long long n, double const *centres,
  * PW85_ERR_INVALID_ARGUMENT (NULL, NaN or infinite value, t_max <= 0, or
  * r12 + t v12 or t w_i overflowing within the horizon; *t is NaN),
  * PW85_ERR_NOT_SPD (q1 or q2 not positive definite; *t is NaN) or
- * PW85_ERR_NO_CONVERGENCE (PW85_CONTACT_TIME_MAX_EVAL evaluations spent, or
- * an evaluation failed: *t is the time up to which [0, *t] is certified
- * free of contact). */
+ * PW85_ERR_NO_CONVERGENCE (PW85_CONTACT_TIME_MAX_EVAL evaluations spent, an
+ * evaluation failed, or no certified step can advance t: *t is the time up
+ * to which [0, *t] is certified free of contact). */
 PW85_API int pw85_contact_time(double const r12[PW85_DIM], double const v12[PW85_DIM],
                                double const q1[PW85_SYM], double const w1[PW85_DIM],
                                double const q2[PW85_SYM], double const w2[PW85_DIM],
