@@ -230,6 +230,28 @@ static void test_steep_crossing(void) {
   g_assert_cmpint(ev, <, 1000);
 }
 
+/* The rate of the event-driven recipe (docs/contact_time.md): dmu^2/dt =
+ * d_r12.v12 + d_theta1.w1 + d_theta2.w2 of pw85_contact_derivatives, against
+ * central differences of the reference mu^2(t) in long double (step 1e-8:
+ * truncation and rounding both below 1e-11 relative). */
+static void test_rate(void) {
+  ct_rng g = {55};
+  for (int n = 0; n < 50; n++) {
+    ct_traj tr;
+    ct_make(&g, 0.1, 10, CT_SPINNING, n, &tr);
+    pw85_derivatives_t d;
+    g_assert_cmpint(pw85_contact_derivatives(tr.r0, tr.q1, tr.q2, &d), ==, PW85_OK);
+    double rate = 0;
+    for (int i = 0; i < 3; i++)
+      rate += d.d_r12[i] * tr.v[i] + d.d_theta1[i] * tr.w1[i] + d.d_theta2[i] * tr.w2[i];
+    ctr_real const h = 1e-8L;
+    ctr_real lam = 0.5L;
+    ctr_real const up = ctr_mu2_at(&tr, h, &lam), down = ctr_mu2_at(&tr, -h, &lam);
+    double const fd = (double)((up - down) / (2 * h));
+    g_assert_cmpfloat(fabs(rate - fd), <=, 1e-9 * (fabs(fd) + d.mu2));
+  }
+}
+
 /* Random, grazing and spinning trajectories of the four classes against
  * the sampled reference (counts as bench/bench_contact_time.c). */
 static void test_reference(void) {
@@ -361,6 +383,7 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact_time/spinning-pair", test_spinning_pair);
   g_test_add_func("/pw85_contact_time/special", test_special);
   g_test_add_func("/pw85_contact_time/steep-crossing", test_steep_crossing);
+  g_test_add_func("/pw85_contact_time/rate", test_rate);
   g_test_add_func("/pw85_contact_time/reference", test_reference);
   g_test_add_func("/pw85_contact_time/scaling", test_scaling);
   g_test_add_func("/pw85_contact_time/pairs", test_pairs);
