@@ -16,7 +16,7 @@ overlap verdicts).
 from ._lib import (Error, Method, Status, status_name, strerror,
                    RESULT_DTYPE, CONTACT_DTYPE, library_path, lib as _clib)
 from ._api import (spheroid, ellipsoid, ellipsoid_quat, ellipsoid_rotation, ellipsoid_axes,
-                   contact_function, overlap, contact,
+                   contact_function, overlap, contact, contact_time,
                    scene_overlap, scene_contact_function, scene_contact,
                    dca, dca_ex, dca_2d, contact_function_2d)
 
@@ -24,6 +24,6 @@ __version__ = _clib.pw85_version().decode()
 
 __all__ = ["Error", "Method", "Status", "status_name", "strerror", "spheroid", "ellipsoid",
            "ellipsoid_quat", "ellipsoid_rotation", "ellipsoid_axes",
-           "contact_function", "overlap", "contact", "scene_overlap",
+           "contact_function", "overlap", "contact", "contact_time", "scene_overlap",
            "scene_contact_function", "scene_contact", "dca", "dca_ex", "dca_2d",
            "contact_function_2d", "CONTACT_DTYPE", "RESULT_DTYPE", "__version__"]
