@@ -32,7 +32,7 @@ program test_fortran
   character(len=:), allocatable :: version, message_ok, message_spd
 
   write (*, '(a)') 'TAP version 13'
-  write (*, '(a)') '1..22'
+  write (*, '(a)') '1..25'
 
   ! Version: the loaded library and the module constant agree.
   version = pw85_version_string()
@@ -129,6 +129,36 @@ program test_fortran
              statuses(2) == PW85_ERR_INVALID_ARGUMENT .and. &
              all(derivs(1)%d_r12 == deriv%d_r12) .and. derivs(2)%mu2 /= derivs(2)%mu2, &
              'pw85_contact_derivatives_pairs: pair 1 as the one-pair call, r12 = 0 fails with NaN')
+  ! First contact time: unit spheres 3 apart closing at unit speed touch at
+  ! t = 1; spinning spheres change nothing.
+  block
+    real(c_double) :: tc, tcs(2), rr(3, 2), vv(3, 2), ww(3, 2), qq(6, 2)
+    integer(c_int) :: nev, sts(2)
+    real(c_double), parameter :: unit(6) = [1, 0, 0, 1, 0, 1]
+    status = pw85_contact_time_ex([3.0_c_double, 0.0_c_double, 0.0_c_double], &
+                                  [-1.0_c_double, 0.0_c_double, 0.0_c_double], unit, &
+                                  [0.0_c_double, 0.0_c_double, 5.0_c_double], unit, &
+                                  [1.0_c_double, 0.0_c_double, 0.0_c_double], 2.0_c_double, &
+                                  tc, nev)
+    call check(status == PW85_OK .and. abs(tc - 1.0_c_double) <= 1e-14_c_double .and. nev >= 1, &
+               'pw85_contact_time_ex: unit spheres 3 apart at unit speed touch at t = 1')
+    rr(:, 1) = [3.0_c_double, 0.0_c_double, 0.0_c_double]
+    rr(:, 2) = [3.0_c_double, 0.0_c_double, 0.0_c_double]
+    vv(:, 1) = [-1.0_c_double, 0.0_c_double, 0.0_c_double]
+    vv(:, 2) = [1.0_c_double, 0.0_c_double, 0.0_c_double]
+    ww = 0.0_c_double
+    qq(:, 1) = unit
+    qq(:, 2) = unit
+    status = pw85_contact_time_pairs(2_c_long_long, rr, vv, qq, ww, qq, ww, 2.0_c_double, tcs, &
+                                     sts, 1_c_int)
+    call check(status == PW85_OK .and. all(sts == PW85_OK) .and. tcs(1) == tc .and. &
+               tcs(2) > huge(1.0_c_double), &
+               'pw85_contact_time_pairs: approaching pair as the one-pair call, receding pair +Inf')
+    status = pw85_contact_time(rr(:, 1), vv(:, 1), unit, ww(:, 1), unit, ww(:, 1), &
+                               -1.0_c_double, tc)
+    call check(status == PW85_ERR_INVALID_ARGUMENT .and. tc /= tc, &
+               'pw85_contact_time: t_max < 0 fails with NaN')
+  end block
   centres(:, 1) = x1
   centres(:, 2) = x2
   qs(:, 1) = q1

@@ -15,13 +15,13 @@ overlap verdicts).
 """
 from ._lib import (Error, Method, Status, status_name, strerror,
                    RESULT_DTYPE, CONTACT_DTYPE, library_path, lib as _clib)
-from ._api import (spheroid, ellipsoid, contact_function, overlap, contact,
+from ._api import (spheroid, ellipsoid, contact_function, overlap, contact, contact_time,
                    scene_overlap, scene_contact_function, scene_contact,
                    dca, dca_ex, dca_2d, contact_function_2d)
 
 __version__ = _clib.pw85_version().decode()
 
 __all__ = ["Error", "Method", "Status", "status_name", "strerror", "spheroid", "ellipsoid",
-           "contact_function", "overlap", "contact", "scene_overlap",
+           "contact_function", "overlap", "contact", "contact_time", "scene_overlap",
            "scene_contact_function", "scene_contact", "dca", "dca_ex", "dca_2d",
            "contact_function_2d", "CONTACT_DTYPE", "RESULT_DTYPE", "__version__"]

@@ -373,6 +373,49 @@ def contact(r12, q1, q2, nthreads=0, check=True):
     return _out(c, batch), _out(st, batch)
 
 
+def contact_time(r12, v12, q1, w1, q2, w2, t_max, nthreads=0, check=True):
+    """First contact time in [0, t_max] of pairs moving as r12 + t v12 with
+    q1, q2 spinning at angular velocities w1, w2 (docs/contact_time.md), by
+    pw85_contact_time_pairs; r12, v12, w1, w2 (..., 3), q1, q2 (..., 6),
+    batch axes broadcast; t_max one positive number. Returns t (inf: no
+    contact; 0: overlapping or touching now): a NumPy scalar for one pair,
+    an array of the batch shape otherwise. check=False: returns (t, status);
+    failing pairs NaN, except PW85_ERR_NO_CONVERGENCE, which keeps the time
+    up to which the pair is certified free of contact."""
+    nt = _nthreads(nthreads)
+    tm = float(t_max)
+    if not (math.isfinite(tm) and tm > 0):
+        raise ValueError(f"t_max: expected a finite number > 0, got {t_max!r}")
+    names = ("r12", "v12", "q1", "w1", "q2", "w2")
+    arrs = [_arr(x, n, 6 if n[0] == "q" else 3)
+            for x, n in zip((r12, v12, q1, w1, q2, w2), names)]
+    batch, arrs = _broadcast(names, arrs, [(a.shape[-1],) for a in arrs])
+    m = _size(batch)
+    t = np.empty(batch, F64)
+    st = np.zeros(batch, np.intc)
+    ret = 0
+    if m:
+        ret = lib.pw85_contact_time_pairs(m, *(a.ctypes.data for a in arrs), tm, t.ctypes.data,
+                                          st.ctypes.data, nt)
+    if ret:
+        if check:
+            rows = _rows(**dict(zip(names, arrs)))
+
+            def rows_of(k, s):
+                r = rows(k, s)
+                if s == Status.ERR_INVALID_ARGUMENT and all(np.all(np.isfinite(x)) for x in r.values()):
+                    return "r12 + t v12 or t w leaves the range of double within t_max"
+                if s == Status.ERR_NO_CONVERGENCE:
+                    return f"contact-free up to t = {t.reshape(-1)[k]!r} only"
+                return r
+            _raise("contact_time", ret, st, rows_of, batch)
+        bad = (st != 0) & (st != Status.ERR_NO_CONVERGENCE)
+        t[bad] = _NAN
+    if check:
+        return _out(t, batch)
+    return _out(t, batch), _out(st, batch)
+
+
 # ---- scenes ---------------------------------------------------------------
 
 def _scene(centres, q, pairs, box):

@@ -243,3 +243,29 @@ def test_pickle():
     assert (str(e2), e2.status, e2.index, e2.status_name) == ("message", -2, 5, "PW85_ERR_NOT_SPD")
     c = pw85.contact(*random_pairs(3))
     assert np.array_equal(pickle.loads(pickle.dumps(c)), c)
+
+
+def test_contact_time():
+    # unit spheres 3 apart closing at unit speed touch at t = 1 (spins change
+    # nothing); receding: inf; broadcasting against the one-pair C call
+    unit = pw85.spheroid(1., 1., [0., 0., 1.])
+    t = pw85.contact_time([3., 0, 0], [-1., 0, 0], unit, [0, 0, 5.], unit, [1., 0, 0], 2.0)
+    assert abs(t - 1.0) <= 1e-14
+    v = np.array([[-1., 0, 0], [1., 0, 0], [0., 1, 0]])
+    ts = pw85.contact_time([3., 0, 0], v, unit, np.zeros(3), unit, np.zeros(3), 3.0)
+    assert ts.shape == (3,) and ts[0] == t and np.isinf(ts[1]) and np.isinf(ts[2])
+    r12, q1, q2 = random_pairs(20, seed=3)
+    rng = np.random.default_rng(4)
+    v12 = -r12 * rng.uniform(0.5, 2, size=(20, 1))
+    w1 = rng.normal(size=(20, 3))
+    ts = pw85.contact_time(r12, v12, q1, w1, q2, np.zeros(3), 1.0, nthreads=2)
+    for k in range(20):
+        assert pw85.contact_time(r12[k], v12[k], q1[k], w1[k], q2[k], np.zeros(3), 1.0) == ts[k]
+    with pytest.raises(ValueError, match="t_max"):
+        pw85.contact_time(r12, v12, q1, w1, q2, w1, 0.0)
+    bad = v12.copy()
+    bad[5, 1] = np.nan
+    with pytest.raises(pw85.Error, match="pair 5.*v12 holds a non-finite"):
+        pw85.contact_time(r12, bad, q1, w1, q2, w1, 1.0)
+    t2, st = pw85.contact_time(r12, bad, q1, w1, q2, w1, 1.0, check=False)
+    assert st[5] == pw85.Status.ERR_INVALID_ARGUMENT and np.isnan(t2[5]) and st[4] == 0

@@ -461,6 +461,20 @@ int pw85_contact_derivatives_pairs(long long m, double const *r12, double const 
   });
 }
 
+int pw85_contact_time_pairs(long long m, double const *r12, double const *v12, double const *q1,
+                            double const *w1, double const *q2, double const *w2, double t_max,
+                            double *t, int *status, int nthreads) {
+  if (m == 0) return PW85_OK;
+  if (!valid_count(m, nthreads) || r12 == nullptr || v12 == nullptr || q1 == nullptr ||
+      w1 == nullptr || q2 == nullptr || w2 == nullptr || t == nullptr ||
+      !std::isfinite(t_max) || !(t_max > 0.0))
+    return PW85_ERR_INVALID_ARGUMENT;
+  return run_pairs(m, status, nthreads, 16, [&](long long k) noexcept {
+    return pw85_contact_time(r12 + 3 * k, v12 + 3 * k, q1 + 6 * k, w1 + 3 * k, q2 + 6 * k,
+                             w2 + 3 * k, t_max, t + k);
+  });
+}
+
 int pw85_scene_contact_derivatives(long long n, double const *centres, double const *q,
                                    double const box[6], long long m, long long const *pairs,
                                    pw85_derivatives_t *d, int *status, int nthreads) {

@@ -44,6 +44,8 @@ module pw85
   ! Distance of closest approach : PW85_DCA_THETA_TOL, PW85_DCA_MAX_EVAL.
   real(c_double), parameter :: PW85_DCA_THETA_TOL = 1.0e-8_c_double
   integer(c_int), parameter :: PW85_DCA_MAX_EVAL = 100
+  ! First contact time: PW85_CONTACT_TIME_MAX_EVAL.
+  integer(c_int), parameter :: PW85_CONTACT_TIME_MAX_EVAL = 100000
 
   ! Contact geometry : mirror of struct pw85_contact_t of pw85.h
   ! (docs/contact_geometry.md). Fortran index k of x0 and n is C index k - 1.
@@ -382,6 +384,46 @@ module pw85
       integer(c_int), value :: nthreads
       integer(c_int) :: res
     end function pw85_scene_contact_derivatives
+
+    ! ---- First contact time (docs/contact_time.md) ----
+    ! int pw85_contact_time(double const r12[3], double const v12[3],
+    !     double const q1[6], double const w1[3], double const q2[6],
+    !     double const w2[3], double t_max, double *t)
+    function pw85_contact_time(r12, v12, q1, w1, q2, w2, t_max, t) &
+        bind(C, name="pw85_contact_time") result(status)
+      import :: c_double, c_int
+      real(c_double), intent(in) :: r12(3), v12(3), q1(6), w1(3), q2(6), w2(3)
+      real(c_double), value :: t_max
+      real(c_double), intent(out) :: t
+      integer(c_int) :: status
+    end function pw85_contact_time
+
+    ! int pw85_contact_time_ex(..., double t_max, double *t, int *evaluations)
+    function pw85_contact_time_ex(r12, v12, q1, w1, q2, w2, t_max, t, evaluations) &
+        bind(C, name="pw85_contact_time_ex") result(status)
+      import :: c_double, c_int
+      real(c_double), intent(in) :: r12(3), v12(3), q1(6), w1(3), q2(6), w2(3)
+      real(c_double), value :: t_max
+      real(c_double), intent(out) :: t
+      integer(c_int), intent(out), optional :: evaluations
+      integer(c_int) :: status
+    end function pw85_contact_time_ex
+
+    ! int pw85_contact_time_pairs(long long m, double const *r12,
+    !     double const *v12, double const *q1, double const *w1,
+    !     double const *q2, double const *w2, double t_max, double *t,
+    !     int *status, int nthreads)
+    function pw85_contact_time_pairs(m, r12, v12, q1, w1, q2, w2, t_max, t, status, &
+        nthreads) bind(C, name="pw85_contact_time_pairs") result(res)
+      import :: c_double, c_int, c_long_long
+      integer(c_long_long), value :: m
+      real(c_double), intent(in) :: r12(3, *), v12(3, *), q1(6, *), w1(3, *), q2(6, *), w2(3, *)
+      real(c_double), value :: t_max
+      real(c_double), intent(out) :: t(*)
+      integer(c_int), intent(out), optional :: status(*)
+      integer(c_int), value :: nthreads
+      integer(c_int) :: res
+    end function pw85_contact_time_pairs
 
     ! ---- Distance of closest approach (docs/dca.md) ----
     ! int pw85_dca_2d(double const u[2], double const q1[3],

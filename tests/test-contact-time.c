@@ -1,0 +1,311 @@
+/* Tests of pw85_contact_time, pw85_contact_time_ex and
+ * pw85_contact_time_pairs (docs/contact_time.md). References, all
+ * independent of the library: the contact time of two spheres (root of
+ * |r12 + t v12| = a1 + a2, in long double), that of two identical
+ * ellipsoids spinning together (closed form below), and for random,
+ * grazing and spinning trajectories of the four semi-axis classes the
+ * sampled long-double / __float128 reference of tests/ct_reference.h. */
+#include <float.h>
+#include <math.h>
+#include <pw85.h>
+#include <string.h>
+
+#include "ct_reference.h"
+#include "testutil.h"
+
+static void bad_one(double const r[3], double const v[3], double const q1[6], double const w1[3],
+                    double const q2[6], double const w2[3], double t_max, int expected) {
+  double t = 1.0;
+  int ev = -1;
+  g_assert_cmpint(pw85_contact_time_ex(r, v, q1, w1, q2, w2, t_max, &t, &ev), ==, expected);
+  g_assert_true(isnan(t));
+  t = 1.0;
+  g_assert_cmpint(pw85_contact_time(r, v, q1, w1, q2, w2, t_max, &t), ==, expected);
+  g_assert_true(isnan(t));
+}
+
+static void test_bad_input(void) {
+  double const r[3] = {3, 0, 0}, v[3] = {-1, 0, 0}, w[3] = {0, 0, 1};
+  double const q[6] = {1, 0, 0, 1, 0, 1}, notspd[6] = {1, 2, 0, 1, 0, 1};
+  double t = 0;
+  int const E = PW85_ERR_INVALID_ARGUMENT;
+  g_assert_cmpint(pw85_contact_time(r, v, q, w, q, w, 1.0, NULL), ==, E);
+  bad_one(NULL, v, q, w, q, w, 1.0, E);
+  bad_one(r, NULL, q, w, q, w, 1.0, E);
+  bad_one(r, v, NULL, w, q, w, 1.0, E);
+  bad_one(r, v, q, NULL, q, w, 1.0, E);
+  bad_one(r, v, q, w, NULL, w, 1.0, E);
+  bad_one(r, v, q, w, q, NULL, 1.0, E);
+  double const bad_values[3] = {NAN, INFINITY, -INFINITY};
+  for (int b = 0; b < 3; b++)
+    for (int i = 0; i < 3; i++) {
+      double rr[3], vv[3], ww[3];
+      memcpy(rr, r, sizeof rr);
+      memcpy(vv, v, sizeof vv);
+      memcpy(ww, w, sizeof ww);
+      rr[i] = bad_values[b];
+      bad_one(rr, v, q, w, q, w, 1.0, E);
+      vv[i] = bad_values[b];
+      bad_one(r, vv, q, w, q, w, 1.0, E);
+      ww[i] = bad_values[b];
+      bad_one(r, v, q, ww, q, w, 1.0, E);
+      bad_one(r, v, q, w, q, ww, 1.0, E);
+    }
+  for (int i = 0; i < 6; i++) {
+    double qq[6];
+    memcpy(qq, q, sizeof qq);
+    qq[i] = NAN;
+    bad_one(r, v, qq, w, q, w, 1.0, E);
+    bad_one(r, v, q, w, qq, w, 1.0, E);
+  }
+  bad_one(r, v, notspd, w, q, w, 1.0, PW85_ERR_NOT_SPD);
+  bad_one(r, v, q, w, notspd, w, 1.0, PW85_ERR_NOT_SPD);
+  double const bad_tmax[5] = {0.0, -1.0, NAN, INFINITY, -INFINITY};
+  for (int k = 0; k < 5; k++) bad_one(r, v, q, w, q, w, bad_tmax[k], E);
+  /* motion leaving the range of double within the horizon */
+  double const vbig[3] = {DBL_MAX, 0, 0};
+  bad_one(r, vbig, q, w, q, w, 4.0, E);
+  /* NULL evaluations is allowed */
+  double t2 = 0;
+  g_assert_cmpint(pw85_contact_time_ex(r, v, q, w, q, w, 2.0, &t, NULL), ==, PW85_OK);
+  g_assert_cmpint(pw85_contact_time(r, v, q, w, q, w, 2.0, &t2), ==, PW85_OK);
+  g_assert_cmpfloat(t, ==, t2);
+  g_assert_cmpfloat(fabs(t - 1.0), <=, 1e-14); /* unit spheres 3 apart, speed 1 */
+}
+
+/* Spheres: |r + t v| = a1 + a2 in long double (the smaller root), spins
+ * that change nothing; contacts, misses, receding pairs, overlaps at 0. */
+static void test_spheres(void) {
+  GRand *rng = g_rand_new_with_seed(4201);
+  double max_err = 0;
+  int contacts = 0, none = 0;
+  for (int n = 0; n < 2000; n++) {
+    double a1 = exp(g_rand_double_range(rng, log(0.01), log(100)));
+    double a2 = exp(g_rand_double_range(rng, log(0.01), log(100)));
+    double q1[6], q2[6], r[3], v[3], w1[3], w2[3], t;
+    sphere_q(a1, q1);
+    sphere_q(a2, q2);
+    double const R = a1 + a2, dist = R * g_rand_double_range(rng, 0.5, 5.0);
+    for (int i = 0; i < 3; i++) {
+      r[i] = g_rand_double_range(rng, -1, 1);
+      v[i] = R * g_rand_double_range(rng, -3, 3);
+      w1[i] = g_rand_double_range(rng, -50, 50);
+      w2[i] = g_rand_double_range(rng, -50, 50);
+    }
+    double const rn = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    for (int i = 0; i < 3; i++) r[i] *= dist / rn;
+    double const t_max = 2.0;
+    long double const rr = (long double)r[0] * r[0] + (long double)r[1] * r[1] + (long double)r[2] * r[2];
+    long double const b = (long double)r[0] * v[0] + (long double)r[1] * v[1] + (long double)r[2] * v[2];
+    long double const vv = (long double)v[0] * v[0] + (long double)v[1] * v[1] + (long double)v[2] * v[2];
+    long double const c = rr - (long double)R * R, disc = b * b - vv * c;
+    double exact;
+    if (c <= 0) exact = 0;
+    else if (disc <= 0 || b >= 0) exact = INFINITY;
+    else exact = (double)(c / (-b + sqrtl(disc)));  /* = (-b - sqrt(disc)) / vv */
+    if (exact > t_max) exact = INFINITY;
+    /* skip near-tangent lines and contacts within 1e-6 of the horizon */
+    if (disc > 0 && disc < 1e-6L * b * b) continue;
+    if (isfinite(exact) && exact > t_max * (1 - 1e-6)) continue;
+    g_assert_cmpint(pw85_contact_time(r, v, q1, w1, q2, w2, t_max, &t), ==, PW85_OK);
+    if (isinf(exact)) {
+      g_assert_true(isinf(t) && t > 0);
+      none++;
+    } else {
+      double const e = fabs(t - exact) / t_max;
+      if (e > max_err) max_err = e;
+      g_assert_cmpfloat(e, <=, 1e-13);
+      contacts++;
+    }
+  }
+  if (g_test_verbose())
+    g_test_message("spheres: %d contacts, %d none, max |t - exact| / t_max %.3g", contacts, none,
+                   max_err);
+  g_assert_cmpint(contacts, >, 200);
+  g_assert_cmpint(none, >, 200);
+  g_rand_free(rng);
+}
+
+/* Two identical ellipsoids spinning together (Q1(t) = Q2(t) = Q(t)), fixed
+ * centres: mu^2 = r^T Q(t)^{-1} r / 4. Semi-axes A > B > C along the body
+ * axes, spin w about the third axis, r = d e_2 in the body frame at t = 0:
+ * mu^2(t) = d^2 (sin^2(wt) / A^2 + cos^2(wt) / B^2) / 4 = 1 first at
+ * cos^2(wt) = (4 / d^2 - 1 / A^2) / (1 / B^2 - 1 / A^2), 2B < d < 2A.
+ * Everything is then turned by a random rotation G (the answer is
+ * invariant). */
+static void test_spinning_pair(void) {
+  GRand *rng = g_rand_new_with_seed(4202);
+  double max_err = 0;
+  for (int n = 0; n < 200; n++) {
+    long double const A = 2.0 + 3 * g_rand_double(rng), B = 0.2 + g_rand_double(rng);
+    long double const C = 0.1 * B, om = g_rand_double_range(rng, 0.5, 20);
+    long double const d = 2 * B + (2 * A - 2 * B) * g_rand_double_range(rng, 0.05, 0.95);
+    long double const c2 = (4 / (d * d) - 1 / (A * A)) / (1 / (B * B) - 1 / (A * A));
+    long double const exact = acosl(sqrtl(c2)) / om;
+    double G[9];
+    random_axes(rng, G);
+    double const radii[3] = {(double)A, (double)B, (double)C};
+    double q[6], r[3], w[3], v[3] = {0, 0, 0};
+    make_q(radii, G, q);
+    /* body axis k is row k of G (make_q: Q = sum_k radii_k^2 G_k G_k^T) */
+    for (int i = 0; i < 3; i++) {
+      r[i] = (double)(d * G[3 + i]);
+      w[i] = (double)(om * G[6 + i]);
+    }
+    double t;
+    int ev;
+    double const t_max = (double)(4 / om);
+    g_assert_cmpint(pw85_contact_time_ex(r, v, q, w, q, w, t_max, &t, &ev), ==, PW85_OK);
+    double const e = (double)fabsl(t - exact) / t_max;
+    if (e > max_err) max_err = e;
+    /* inputs rounded to double: the exact answer moves by ~1e-16 relative */
+    g_assert_cmpfloat(e, <=, 1e-12);
+  }
+  if (g_test_verbose()) g_test_message("spinning pair: max |t - exact| / t_max %.3g", max_err);
+  g_rand_free(rng);
+}
+
+static void test_special(void) {
+  double const q[6] = {4, 0, 0, 1, 0, 0.25}, z[3] = {0, 0, 0};
+  double r[3] = {1, 0.5, 0}, v[3] = {1, 0, 0}, t = -1;
+  int ev = -1;
+  /* overlapping at t = 0 */
+  g_assert_cmpint(pw85_contact_time_ex(r, v, q, z, q, z, 1.0, &t, &ev), ==, PW85_OK);
+  g_assert_cmpfloat(t, ==, 0.0);
+  g_assert_cmpint(ev, ==, 1);
+  /* no relative motion, apart: no contact, one evaluation */
+  r[0] = 10;
+  g_assert_cmpint(pw85_contact_time_ex(r, z, q, z, q, z, 1e300, &t, &ev), ==, PW85_OK);
+  g_assert_true(isinf(t) && t > 0);
+  g_assert_cmpint(ev, ==, 1);
+  /* receding without rotation: the tangent bound never reaches 1 */
+  g_assert_cmpint(pw85_contact_time_ex(r, v, q, z, q, z, 1e300, &t, &ev), ==, PW85_OK);
+  g_assert_true(isinf(t) && t > 0);
+  g_assert_cmpint(ev, ==, 1);
+  /* approaching head-on: gap 10 - 2 * 2 = 6 at unit speed */
+  double const vin[3] = {-1, 0, 0}, r0[3] = {10, 0, 0};
+  g_assert_cmpint(pw85_contact_time_ex(r0, vin, q, z, q, z, 100.0, &t, &ev), ==, PW85_OK);
+  g_assert_cmpfloat(fabs(t - 6.0), <=, 6.0 * 4 * DBL_EPSILON);
+  g_assert_cmpint(ev, <=, 3);
+  /* the same beyond the horizon */
+  g_assert_cmpint(pw85_contact_time(r0, vin, q, z, q, z, 5.9, &t), ==, PW85_OK);
+  g_assert_true(isinf(t));
+  /* a needle spinning fast next to a sphere it never reaches: budget
+   * exhausted, *t certified free of contact (mu^2 > 1 everywhere) */
+  double const radii[3] = {10, 0.01, 0.01}, axes[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  double needle[6], ball[6], rn[3] = {0, 10.6, 0}, wn[3] = {0, 0, 1e7};
+  make_q(radii, axes, needle);
+  sphere_q(0.5, ball);
+  g_assert_cmpint(pw85_contact_time_ex(rn, z, needle, wn, ball, z, 1.0, &t, &ev), ==,
+                  PW85_ERR_NO_CONVERGENCE);
+  g_assert_cmpint(ev, >=, PW85_CONTACT_TIME_MAX_EVAL);
+  g_assert_true(t > 0 && t < 1.0);
+  /* touching that needle tip-on at t = 0 is reported at 0 */
+  rn[1] = 0;
+  rn[0] = 10.5;
+  g_assert_cmpint(pw85_contact_time(rn, z, needle, wn, ball, z, 1.0, &t), ==, PW85_OK);
+  g_assert_cmpfloat(t, ==, 0.0);
+}
+
+/* Random, grazing and spinning trajectories of the four classes against
+ * the sampled reference (counts as bench/bench_contact_time.c). */
+static void test_reference(void) {
+  const double lo[4] = {0.5, 0.1, 0.01, 0.001}, hi[4] = {2, 10, 100, 1000};
+  int const n = g_test_slow() ? 2000 : 100;
+  for (int c = 0; c < 4; c++) {
+    ct_rng g = {1000 + c};
+    int missed = 0, early = 0, contacts = 0;
+    double max_err = 0;
+    for (int i = 0; i < n; i++) {
+      int const kind = i % 5 < 3 ? CT_RANDOM : (i % 5 == 3 ? CT_GRAZING : CT_SPINNING);
+      ct_traj tr;
+      ct_make(&g, lo[c], hi[c], kind, i / 5, &tr);
+      double t;
+      int ev;
+      g_assert_cmpint(pw85_contact_time_ex(tr.r0, tr.v, tr.q1, tr.w1, tr.q2, tr.w2, tr.t_max, &t, &ev), ==, PW85_OK);
+      ct_ref ref;
+      ct_reference(&tr, &ref);
+      double const tol = 1e-9 * tr.t_max;
+      if (ref.t[0] != INFINITY) {
+        contacts++;
+        if (!(t <= ref.t[0] + tol)) missed++;
+      }
+      if (t != INFINITY && !(t >= ref.t[2] - tol)) {
+        ctr_real lam = 0.5L;
+        if (ctr_mu2_at(&tr, t, &lam) > ct_levels[2] && ctr_mu2_at(&tr, t + tol, &lam) > ct_levels[2])
+          early++;
+      }
+      /* clear crossings (mu^2 below 1 - 1e-9): time to 1e-9 t_max */
+      if (ref.min_mu2 < 1 - 1e-9 && ref.t[1] != INFINITY) {
+        double const e = fabs(t - ref.t[1]) / tr.t_max;
+        if (e > max_err) max_err = e;
+      }
+    }
+    if (g_test_verbose())
+      g_test_message("class %d: %d trajectories, %d contacts, %d missed, %d early, max err %.3g", c,
+                     n, contacts, missed, early, max_err);
+    g_assert_cmpint(missed, ==, 0);
+    g_assert_cmpint(early, ==, 0);
+    g_assert_cmpint(contacts, >, n / 5);
+    g_assert_cmpfloat(max_err, <=, 1e-9);
+  }
+}
+
+static void test_pairs(void) {
+  enum { M = 60 };
+  double r[3 * M], v[3 * M], q1[6 * M], q2[6 * M], w1[3 * M], w2[3 * M], t[M], t1;
+  int status[M];
+  ct_rng g = {77};
+  for (int k = 0; k < M; k++) {
+    ct_traj tr;
+    ct_make(&g, 0.1, 10, k % 3 == 0 ? CT_SPINNING : CT_RANDOM, k, &tr);
+    memcpy(r + 3 * k, tr.r0, sizeof tr.r0);
+    memcpy(v + 3 * k, tr.v, sizeof tr.v);
+    memcpy(w1 + 3 * k, tr.w1, sizeof tr.w1);
+    memcpy(w2 + 3 * k, tr.w2, sizeof tr.w2);
+    memcpy(q1 + 6 * k, tr.q1, sizeof tr.q1);
+    memcpy(q2 + 6 * k, tr.q2, sizeof tr.q2);
+  }
+  q2[6 * 7 + 1] = 100;  /* pair 7 not positive definite */
+  r[3 * 9] = NAN;       /* pair 9 invalid */
+  for (int nt = 0; nt <= 3; nt++) {
+    for (int k = 0; k < M; k++) t[k] = -2, status[k] = 99;
+    g_assert_cmpint(pw85_contact_time_pairs(M, r, v, q1, w1, q2, w2, 1.0, t, status, nt), ==,
+                    PW85_ERR_NOT_SPD);
+    for (int k = 0; k < M; k++) {
+      int const s = pw85_contact_time(r + 3 * k, v + 3 * k, q1 + 6 * k, w1 + 3 * k, q2 + 6 * k,
+                                      w2 + 3 * k, 1.0, &t1);
+      g_assert_cmpint(status[k], ==, s);
+      g_assert_true(memcmp(&t1, &t[k], sizeof t1) == 0);
+    }
+    g_assert_cmpint(status[7], ==, PW85_ERR_NOT_SPD);
+    g_assert_cmpint(status[9], ==, PW85_ERR_INVALID_ARGUMENT);
+    g_assert_cmpint(pw85_contact_time_pairs(M, r, v, q1, w1, q2, w2, 1.0, t, NULL, nt), ==,
+                    PW85_ERR_NOT_SPD);
+  }
+  /* call-level errors: nothing written */
+  for (int k = 0; k < M; k++) t[k] = -2, status[k] = 99;
+  g_assert_cmpint(pw85_contact_time_pairs(0, NULL, NULL, NULL, NULL, NULL, NULL, 1.0, NULL, NULL, 0), ==, PW85_OK);
+  g_assert_cmpint(pw85_contact_time_pairs(-1, r, v, q1, w1, q2, w2, 1.0, t, status, 0), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_contact_time_pairs(M, r, v, q1, w1, q2, w2, 0.0, t, status, 0), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_contact_time_pairs(M, r, v, q1, w1, q2, w2, NAN, t, status, 0), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_contact_time_pairs(M, r, v, q1, w1, q2, w2, 1.0, NULL, status, 0), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_contact_time_pairs(M, r, NULL, q1, w1, q2, w2, 1.0, t, status, 0), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_contact_time_pairs(M, r, v, q1, NULL, q2, w2, 1.0, t, status, 0), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_contact_time_pairs(M, r, v, q1, w1, q2, w2, 1.0, t, status, -1), ==, PW85_ERR_INVALID_ARGUMENT);
+  for (int k = 0; k < M; k++) {
+    g_assert_cmpfloat(t[k], ==, -2);
+    g_assert_cmpint(status[k], ==, 99);
+  }
+}
+
+int main(int argc, char **argv) {
+  g_test_init(&argc, &argv, NULL);
+  g_test_add_func("/pw85_contact_time/bad-input", test_bad_input);
+  g_test_add_func("/pw85_contact_time/spheres", test_spheres);
+  g_test_add_func("/pw85_contact_time/spinning-pair", test_spinning_pair);
+  g_test_add_func("/pw85_contact_time/special", test_special);
+  g_test_add_func("/pw85_contact_time/reference", test_reference);
+  g_test_add_func("/pw85_contact_time/pairs", test_pairs);
+  return g_test_run();
+}
