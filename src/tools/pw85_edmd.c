@@ -626,12 +626,14 @@ int main(int argc, char **argv) {
   for (int k = 0; k < blocks; k++) zm += zblock[k] / blocks;
   for (int k = 0; k < blocks; k++) zv += (zblock[k] - zm) * (zblock[k] - zm) / (blocks - 1);
   double zerr = sqrt(zv / blocks), zcs = (1 + phi + phi * phi - phi * phi * phi) / pow(1 - phi, 3);
-  printf("pressure: Z = PV/(N kT) = %.5f +- %.5f (%d blocks of %lld collisions after %lld); "
-         "Carnahan-Starling %.5f, Z/Z_CS - 1 = %+.3f %%\n",
-         zm, zerr, blocks, per_block, nequil, zcs, 100.0 * (zm / zcs - 1.0));
+  printf("pressure: Z = PV/(N kT) = %.5f +- %.5f (%d blocks of %lld collisions after %lld)", zm, zerr,
+         blocks, per_block, nequil);
+  if (axes[0] == axes[2])
+    printf("; Carnahan-Starling %.5f, Z/Z_CS - 1 = %+.3f %%", zcs, 100.0 * (zm / zcs - 1.0));
+  printf("\n");
   int fail = s.stuck || ck.mu2_low || ck.mu2_high || ck.overlap_at_contact || ck.not_separating || ck.energy || ck.momentum ||
              ck.angular || ck.scene_overlaps || !(de <= 1e-10) || !(dp <= 1e-10) ||
-             (cs && !(fabs(zm / zcs - 1.0) <= 0.01));
+             (cs && !(axes[0] == axes[2] && fabs(zm / zcs - 1.0) <= 0.01));
   printf("%s\n", fail ? "FAILED" : "OK");
   free(s.t0), free(s.c), free(s.v), free(s.w), free(s.a), free(s.cell), free(s.count), free(s.ev);
   free(s.heap), free(s.pos), free(s.head), free(s.next), free(cbuf), free(qbuf), free(zblock);
