@@ -22,7 +22,7 @@
  * in the same passes: one PW85_METHOD_DEFAULT evaluation at t = 0 per
  * trajectory (ns_default), and the cost per evaluation over it.
  *
- *   build/bench/bench_contact_time [--verbose] [--n 1000] [--reps 5] [--seed 42] > docs/bench_contact_time.csv
+ *   build/bench/bench_contact_time [--verbose] [--class C] [--n 1000] [--reps 5] [--seed 42] > docs/bench_contact_time.csv
  *
  * The table goes to stderr, the CSV to stdout. Benchmark only. */
 #define _POSIX_C_SOURCE 199309L
@@ -54,13 +54,14 @@ static volatile double sink;
 static const char *kind_name[CT_KINDS] = {"random", "grazing", "spinning"};
 
 int main(int argc, char **argv) {
-  int n = 1000, reps = 5, verbose = 0;
+  int n = 1000, reps = 5, verbose = 0, only = -1;
   unsigned long long seed = 42;
   for (int i = 1; i < argc; i += 2) {
     if (!strcmp(argv[i], "--verbose")) { verbose = 1; i--; continue; }
     if (i + 1 >= argc) { fprintf(stderr, "option %s needs a value\n", argv[i]); return 2; }
     if (!strcmp(argv[i], "--n")) n = atoi(argv[i + 1]);
     else if (!strcmp(argv[i], "--reps")) reps = atoi(argv[i + 1]);
+    else if (!strcmp(argv[i], "--class")) only = atoi(argv[i + 1]);
     else if (!strcmp(argv[i], "--seed")) seed = strtoull(argv[i + 1], NULL, 10);
     else { fprintf(stderr, "unknown option %s\n", argv[i]); return 2; }
   }
@@ -76,6 +77,7 @@ int main(int argc, char **argv) {
   double *rev = malloc(sizeof *rev * n), *ns = malloc(sizeof *ns * reps);
   int *kind = malloc(sizeof *kind * n), *st = malloc(sizeof *st * n);
   for (int c = 0; c < 4; c++) {
+    if (only >= 0 && c != only) continue;
     ct_rng g = {seed * 4 + c};
     for (int i = 0; i < n; i++) {
       kind[i] = i % 5 < 3 ? CT_RANDOM : (i % 5 == 3 ? CT_GRAZING : CT_SPINNING);

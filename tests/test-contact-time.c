@@ -251,6 +251,38 @@ static void test_reference(void) {
   }
 }
 
+/* Lengths scaled by 2^k (r12, v12 by 2^k, Q by 2^2k): the same bits of t,
+ * from 2^-450 to 2^450 (the computation runs on lengths rescaled near 1). */
+static void test_scaling(void) {
+  ct_rng g = {91};
+  for (int n = 0; n < 20; n++) {
+    ct_traj tr;
+    ct_make(&g, 0.1, 10, n % 2 ? CT_SPINNING : CT_RANDOM, n, &tr);
+    double t0;
+    g_assert_cmpint(pw85_contact_time(tr.r0, tr.v, tr.q1, tr.w1, tr.q2, tr.w2, 1.0, &t0), ==, PW85_OK);
+    for (int k = -450; k <= 450; k += 75) {
+      double r[3], v[3], q1[6], q2[6], t;
+      for (int i = 0; i < 3; i++) {
+        r[i] = ldexp(tr.r0[i], k);
+        v[i] = ldexp(tr.v[i], k);
+      }
+      for (int i = 0; i < 6; i++) {
+        q1[i] = ldexp(tr.q1[i], 2 * k);
+        q2[i] = ldexp(tr.q2[i], 2 * k);
+      }
+      g_assert_cmpint(pw85_contact_time(r, v, q1, tr.w1, q2, tr.w2, 1.0, &t), ==, PW85_OK);
+      g_assert_true(memcmp(&t, &t0, sizeof t) == 0);
+    }
+  }
+  /* centres 1e200 apart, unit spheres, closing at 1e200 per unit time:
+   * mu^2 ~ 1e400 beyond the double range at t = 0 */
+  double const q[6] = {1, 0, 0, 1, 0, 1}, z[3] = {0, 0, 0}, r[3] = {1e200, 0, 0},
+               v[3] = {-1e200, 0, 0};
+  double t;
+  g_assert_cmpint(pw85_contact_time(r, v, q, z, q, z, 2.0, &t), ==, PW85_OK);
+  g_assert_cmpfloat(fabs(t - 1.0), <=, 1e-14);
+}
+
 static void test_pairs(void) {
   enum { M = 60 };
   double r[3 * M], v[3 * M], q1[6 * M], q2[6 * M], w1[3 * M], w2[3 * M], t[M], t1;
@@ -306,6 +338,7 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact_time/spinning-pair", test_spinning_pair);
   g_test_add_func("/pw85_contact_time/special", test_special);
   g_test_add_func("/pw85_contact_time/reference", test_reference);
+  g_test_add_func("/pw85_contact_time/scaling", test_scaling);
   g_test_add_func("/pw85_contact_time/pairs", test_pairs);
   return g_test_run();
 }

@@ -29,6 +29,9 @@ constexpr double kBand = 1e-13;
 // In that band, a certified step shorter than kBandStep t_max ends the
 // search at its end: a crossing, where g is the tangent of mu.
 constexpr double kBandStep = 1e-6;
+// A step below half an ulp of t_k (a crossing steeper than mu^2 changes
+// across one ulp of t) ends the search at t_k when mu^2(t_k) <= 1 + kStuck.
+constexpr double kStuck = 1e-6;
 
 RateBounds rate_bounds(AxisBounds const &a1, Vec3 const &w1, AxisBounds const &a2,
                        Vec3 const &w2) noexcept {
@@ -79,7 +82,8 @@ Status contact_time(Vec3 const &r12, Vec3 const &v12, Sym3 const &q1, Vec3 const
   // unchanged by r -> 2^-e r, v -> 2^-e v, Q -> 2^-2e Q (exact).
   double qmax = 0.0;
   for (int i = 0; i < kSym; ++i) qmax = std::fmax(qmax, std::fmax(std::fabs(q1[i]), std::fabs(q2[i])));
-  int const e = std::ilogb(qmax) / 2;
+  int const eq = std::ilogb(qmax);
+  int const e = (eq - (eq & 1)) / 2;  // floor(eq / 2): inputs scaled by 2^k give 2^(e + k)
   Vec3 r0, v;
   Sym3 a1, a2;
   for (int i = 0; i < kDim; ++i) {
@@ -108,7 +112,9 @@ Status contact_time(Vec3 const &r12, Vec3 const &v12, Sym3 const &q1, Vec3 const
     MethodResult mr;
     Status const s = contact_method(kMethodDefault, r, p1, p2, mr);
     ++res.evaluations;
-    if (s != kOk && s != kInaccurate) {
+    // kRange: mu^2 beyond the double range, written rounded (+inf or tiny),
+    // still decides; lambda is that of the rescaled problem.
+    if (s != kOk && s != kInaccurate && s != kRange) {
       res.t = t;
       return kNoConvergence;
     }
@@ -145,6 +151,10 @@ Status contact_time(Vec3 const &r12, Vec3 const &v12, Sym3 const &q1, Vec3 const
     if (band && tau <= kBandStep * t_max) {  // the last, Newton-like, step (T6)
       res.t = t + tau;
       return kOk;
+    }
+    if (t + tau == t) {  // below the resolution of t (T6)
+      res.t = t;
+      return mr.mu2 <= 1.0 + kStuck ? kOk : kNoConvergence;
     }
     t += tau;
   }

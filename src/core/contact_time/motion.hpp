@@ -15,7 +15,14 @@ inline Vec3 cross(Vec3 const &a, Vec3 const &b) noexcept {
   return Vec3{{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
 }
 
-inline double norm(Vec3 const &a) noexcept { return std::sqrt(dot(a, a)); }
+// |a|, without overflow or underflow of the squares for any finite a.
+inline double norm(Vec3 const &a) noexcept {
+  double const m = std::fmax(std::fabs(a[0]), std::fmax(std::fabs(a[1]), std::fabs(a[2])));
+  if (m > 0x1p-500 && m < 0x1p500) return std::sqrt(dot(a, a));
+  if (!(m > 0.0) || !std::isfinite(m)) return m;
+  Vec3 const b{{a[0] / m, a[1] / m, a[2] / m}};
+  return m * std::sqrt(dot(b, b));
+}
 
 // r12 + t v12 in double-double, rounded once: relative error u per
 // component, however much r12 and t v12 cancel.
