@@ -503,7 +503,7 @@ int main(int argc, char **argv) {
     fprintf(stderr, "pw85_edmd: packing fraction too high for the initial lattice\n");
     return 2;
   }
-  size_t nn = (size_t)n, ncell = (size_t)s.nc * s.nc * s.nc;
+  size_t nn = (size_t)n, ncell = (size_t)s.nc * (size_t)s.nc * (size_t)s.nc;
   s.t0 = calloc(nn, sizeof(double));
   s.c = calloc(3 * nn, sizeof(double));
   s.v = calloc(3 * nn, sizeof(double));
@@ -584,7 +584,7 @@ int main(int argc, char **argv) {
       st = predict(&s, i);
     } else if (e.type == EV_COLLISION && s.count[e.j] == e.cj) {
       st = collide(&s, i, &e, &ck, &virial);
-      if (s.collisions == nequil) tblock = s.tnow, virial = 0.0;
+      if (s.collisions == nequil && s.collisions != before_c) tblock = s.tnow, virial = 0.0;
       if (st == PW85_OK) st = predict(&s, i);
       if (st == PW85_OK) st = predict(&s, e.j);
     } else {
