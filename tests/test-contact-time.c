@@ -207,6 +207,29 @@ static void test_special(void) {
   g_assert_cmpfloat(t, ==, 0.0);
 }
 
+/* Two spinning needles (class 3) whose crossing is steeper than mu^2 can be
+ * resolved across one ulp of t: the search ends there (T6), against the
+ * reference. */
+static void test_steep_crossing(void) {
+  ct_traj tr = {{-13.228060262786865, -1683.0097124255508, -1252.6309527731314},
+                {-92.291492931827861, 1998.9167652903966, 1301.4400012036137},
+                {609.82202038421224, 5323.8763234743174, -2851.6919041809065, 46479.600600379948,
+                 -24896.231760520521, 13335.400742009047},
+                {-22.227079719578761, -11.342089554329005, -10.681750629154825},
+                {32484.158976247676, -27829.54685986925, -94387.490816569378, 23842.987208523908,
+                 80865.210799117209, 274261.85747009405},
+                {-25.120962546555674, 9.5544416021060137, -2.4033332501720799},
+                1.0};
+  double t;
+  int ev;
+  g_assert_cmpint(pw85_contact_time_ex(tr.r0, tr.v, tr.q1, tr.w1, tr.q2, tr.w2, tr.t_max, &t, &ev), ==, PW85_OK);
+  ct_ref ref;
+  ct_reference(&tr, &ref);
+  g_assert_cmpfloat(t, <=, ref.t[0] + 1e-9);
+  g_assert_cmpfloat(t, >=, ref.t[2] - 1e-9);
+  g_assert_cmpint(ev, <, 1000);
+}
+
 /* Random, grazing and spinning trajectories of the four classes against
  * the sampled reference (counts as bench/bench_contact_time.c). */
 static void test_reference(void) {
@@ -337,6 +360,7 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact_time/spheres", test_spheres);
   g_test_add_func("/pw85_contact_time/spinning-pair", test_spinning_pair);
   g_test_add_func("/pw85_contact_time/special", test_special);
+  g_test_add_func("/pw85_contact_time/steep-crossing", test_steep_crossing);
   g_test_add_func("/pw85_contact_time/reference", test_reference);
   g_test_add_func("/pw85_contact_time/scaling", test_scaling);
   g_test_add_func("/pw85_contact_time/pairs", test_pairs);
