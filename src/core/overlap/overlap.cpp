@@ -14,6 +14,7 @@
 #include "common/fp.hpp"
 #include "common/isa.hpp"
 #include "common/magnitude.hpp"
+#include "overlap/bounded_sym.hpp"
 #include "overlap/overlap.hpp"
 #include "overlap/overlap_dd.hpp"
 #include "common/screen.hpp"
@@ -41,11 +42,15 @@ inline V2 neg(double x) noexcept { return V2{x, -std::fabs(x)}; }
 inline V2 flip(V2 b) noexcept { return b * V2{1.0, -1.0}; }
 inline double err(V2 b) noexcept { return kC * b[1] + kAbs; }
 
-// A symmetric matrix with its absolute values: p[i] = pos(q[i]), n[i] = neg(q[i]).
-struct SymB {
-  V2 p[kSym], n[kSym];
-};
+// The bounded matrix algebra of bounded_sym.hpp on V2.
+using SymB = bounded::Sym<V2>;
+using bounded::det_adj;
+using bounded::mixed_adj;
+using bounded::outer;
+using bounded::quad;
+using bounded::trace_adj;
 
+// p[i] = pos(q[i]), n[i] = neg(q[i]).
 inline SymB bound(Sym3 const &q) noexcept {
   SymB b;
   for (int i = 0; i < kSym; ++i) {
@@ -53,58 +58,6 @@ inline SymB bound(Sym3 const &q) noexcept {
     b.n[i] = flip(b.p[i]);
   }
   return b;
-}
-
-// Adjugate entries {adj00, adj01, adj02, adj11, adj12, adj22} of q (m[]),
-// and det q (returned), with their bounds (eq. (O3), (O10)).
-inline V2 det_adj(SymB const &q, V2 m[kSym]) noexcept {
-  V2 const *p = q.p, *n = q.n;
-  m[0] = p[3] * p[5] - p[4] * n[4];
-  m[1] = p[2] * p[4] - p[1] * n[5];
-  m[2] = p[1] * p[4] - p[2] * n[3];
-  m[3] = p[0] * p[5] - p[2] * n[2];
-  m[4] = p[1] * p[2] - p[0] * n[4];
-  m[5] = p[0] * p[3] - p[1] * n[1];
-  return p[0] * m[0] + p[1] * m[1] + p[2] * m[2];
-}
-
-// sum_ij A_ij Y_ij for symmetric A, Y stored as Sym3 (A ordered
-// {00, 01, 02, 11, 12, 22}), Y as {00, 11, 22, 01, 02, 12} when yy_order is
-// the products r r^T of quad_rr below. Used for r^T Q r, r^T adj(Q) r,
-// y^T adj(Q) y (eq. (O10), (O11), (O6)).
-inline V2 quad(V2 const a[kSym], V2 const yy[kSym]) noexcept {
-  return a[0] * yy[0] + a[3] * yy[1] + a[5] * yy[2] +
-         2.0 * (a[1] * yy[3] + a[2] * yy[4] + a[4] * yy[5]);
-}
-
-// Products {y0 y0, y1 y1, y2 y2, y0 y1, y0 y2, y1 y2} of bounded y
-// (lane 1 of y is a bound of |y_i|).
-inline void outer(V2 const y[kDim], V2 yy[kSym]) noexcept {
-  yy[0] = y[0] * y[0];
-  yy[1] = y[1] * y[1];
-  yy[2] = y[2] * y[2];
-  yy[3] = y[0] * y[1];
-  yy[4] = y[0] * y[2];
-  yy[5] = y[1] * y[2];
-}
-
-// tr(adj(A) B) = sum_ij adj(A)_ij B_ij (eq. (O10)).
-inline V2 trace_adj(V2 const m[kSym], SymB const &b) noexcept {
-  V2 const *p = b.p;
-  return m[0] * p[0] + m[3] * p[3] + m[5] * p[5] +
-         2.0 * (m[1] * p[1] + m[2] * p[2] + m[4] * p[4]);
-}
-
-// Mixed adjugate M = adj(A + B) - adj(A) - adj(B), bilinear in (A, B),
-// entries in the order of Sym3 (eq. (O10)).
-inline void mixed_adj(SymB const &a, SymB const &b, V2 m[kSym]) noexcept {
-  V2 const *ap = a.p, *an = a.n, *bp = b.p, *bn = b.n;
-  m[0] = (ap[3] * bp[5] + bp[3] * ap[5]) - 2.0 * (ap[4] * bn[4]);
-  m[1] = (ap[2] * bp[4] + bp[2] * ap[4]) - (ap[1] * bn[5] + bp[1] * an[5]);
-  m[2] = (ap[1] * bp[4] + bp[1] * ap[4]) - (ap[2] * bn[3] + bp[2] * an[3]);
-  m[3] = (ap[0] * bp[5] + bp[0] * ap[5]) - 2.0 * (ap[2] * bn[2]);
-  m[4] = (ap[1] * bp[2] + bp[1] * ap[2]) - (ap[0] * bn[4] + bp[0] * an[4]);
-  m[5] = (ap[0] * bp[3] + bp[0] * ap[3]) - 2.0 * (ap[1] * bn[1]);
 }
 
 // g = det Q - y^T adj(Q) y > 0 certified: y = x - c strictly inside

@@ -20,6 +20,7 @@
 
 #include "common/fp.hpp"
 #include "common/isa.hpp"
+#include "overlap/bounded_sym.hpp"
 #include "overlap/overlap.hpp"
 
 // Every function taking or returning a vector is always inline into the
@@ -65,9 +66,13 @@ PW85_ALWAYS_INLINE B pos(V x) noexcept { return {x, vabs(x)}; }
 PW85_ALWAYS_INLINE B flip(B x) noexcept { return {x.v, -x.b}; }
 PW85_ALWAYS_INLINE V err(B x) noexcept { return kC * x.b + kAbs; }
 
-struct SymB {
-  B p[kSym], n[kSym];
-};
+// The bounded matrix algebra of bounded_sym.hpp on B.
+using SymB = bounded::Sym<B>;
+using bounded::det_adj;
+using bounded::mixed_adj;
+using bounded::outer;
+using bounded::quad;
+using bounded::trace_adj;
 
 PW85_ALWAYS_INLINE SymB bound(V const q[kSym]) noexcept {
   SymB b;
@@ -76,48 +81,6 @@ PW85_ALWAYS_INLINE SymB bound(V const q[kSym]) noexcept {
     b.n[i] = flip(b.p[i]);
   }
   return b;
-}
-
-// overlap.cpp's det_adj, quad, outer, trace_adj, mixed_adj (eq. (O10)).
-PW85_ALWAYS_INLINE B det_adj(SymB const &q, B m[kSym]) noexcept {
-  B const *p = q.p, *n = q.n;
-  m[0] = p[3] * p[5] - p[4] * n[4];
-  m[1] = p[2] * p[4] - p[1] * n[5];
-  m[2] = p[1] * p[4] - p[2] * n[3];
-  m[3] = p[0] * p[5] - p[2] * n[2];
-  m[4] = p[1] * p[2] - p[0] * n[4];
-  m[5] = p[0] * p[3] - p[1] * n[1];
-  return p[0] * m[0] + p[1] * m[1] + p[2] * m[2];
-}
-
-PW85_ALWAYS_INLINE B quad(B const a[kSym], B const yy[kSym]) noexcept {
-  return a[0] * yy[0] + a[3] * yy[1] + a[5] * yy[2] +
-         2.0 * (a[1] * yy[3] + a[2] * yy[4] + a[4] * yy[5]);
-}
-
-PW85_ALWAYS_INLINE void outer(B const y[kDim], B yy[kSym]) noexcept {
-  yy[0] = y[0] * y[0];
-  yy[1] = y[1] * y[1];
-  yy[2] = y[2] * y[2];
-  yy[3] = y[0] * y[1];
-  yy[4] = y[0] * y[2];
-  yy[5] = y[1] * y[2];
-}
-
-PW85_ALWAYS_INLINE B trace_adj(B const m[kSym], SymB const &b) noexcept {
-  B const *p = b.p;
-  return m[0] * p[0] + m[3] * p[3] + m[5] * p[5] +
-         2.0 * (m[1] * p[1] + m[2] * p[2] + m[4] * p[4]);
-}
-
-PW85_ALWAYS_INLINE void mixed_adj(SymB const &a, SymB const &b, B m[kSym]) noexcept {
-  B const *ap = a.p, *an = a.n, *bp = b.p, *bn = b.n;
-  m[0] = (ap[3] * bp[5] + bp[3] * ap[5]) - 2.0 * (ap[4] * bn[4]);
-  m[1] = (ap[2] * bp[4] + bp[2] * ap[4]) - (ap[1] * bn[5] + bp[1] * an[5]);
-  m[2] = (ap[1] * bp[4] + bp[1] * ap[4]) - (ap[2] * bn[3] + bp[2] * an[3]);
-  m[3] = (ap[0] * bp[5] + bp[0] * ap[5]) - 2.0 * (ap[2] * bn[2]);
-  m[4] = (ap[1] * bp[2] + bp[1] * ap[2]) - (ap[0] * bn[4] + bp[0] * an[4]);
-  m[5] = (ap[0] * bp[3] + bp[0] * ap[3]) - 2.0 * (ap[1] * bn[1]);
 }
 
 // The L D L^T pivot test of screen.hpp (ldl_positive) in every lane: all
