@@ -154,13 +154,16 @@ PW85_ALWAYS_INLINE bool at_lambda(double lambda, Vec3 const &r, Sym3 const &q1, 
 }
 
 // contact_derivatives with the double-double products of arith/dd.hpp by
-// FMA (F = true) or Dekker's product.
+// FMA (F = true) or Dekker's product;
+// in_range: every magnitude inside (kSafeLo, kSafeHi) and r != 0, so that
+// DEFAULT is called without the dispatcher's checks (contact.hpp).
 template <bool F>
 PW85_ALWAYS_INLINE Status derivatives_impl(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                           Derivatives &d) noexcept {
+                                           bool in_range, Derivatives &d) noexcept {
   static_assert(sizeof(Derivatives) == 29 * sizeof(double), "plain struct of 29 doubles");
   MethodResult res;
-  Status const status = contact_method(kMethodDefault, r, q1, q2, res);
+  Status const status = in_range ? contact_method_in_range(kMethodDefault, r, q1, q2, res)
+                                  : contact_method(kMethodDefault, r, q1, q2, res);
   double lambda = res.lambda;
   bool const solved = (status == kOk || status == kInaccurate) && lambda > 0.0 && lambda < 1.0;
   // (E8): most pairs; otherwise the refined path (E7) below.
@@ -298,17 +301,17 @@ PW85_ALWAYS_INLINE Status derivatives_impl(Vec3 const &r, Sym3 const &q1, Sym3 c
 
 #if PW85_ISA_FMA
 PW85_TARGET_FMA Status derivatives_fma(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                       Derivatives &d) noexcept {
-  return derivatives_impl<true>(r, q1, q2, d);
+                                       bool in_range, Derivatives &d) noexcept {
+  return derivatives_impl<true>(r, q1, q2, in_range, d);
 }
 #endif
 
 inline Status derivatives_dispatch(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                   Derivatives &d) noexcept {
+                                   bool in_range, Derivatives &d) noexcept {
 #if PW85_ISA_FMA
-  if (isa::has_fma()) return derivatives_fma(r, q1, q2, d);
+  if (isa::has_fma()) return derivatives_fma(r, q1, q2, in_range, d);
 #endif
-  return derivatives_impl<isa::kStaticFma>(r, q1, q2, d);
+  return derivatives_impl<isa::kStaticFma>(r, q1, q2, in_range, d);
 }
 
 }  // namespace
@@ -319,10 +322,13 @@ inline Status derivatives_dispatch(Vec3 const &r, Sym3 const &q1, Sym3 const &q2
 // Hessian by 2^2e; mu2, lambda and the torques are invariant.
 Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                            Derivatives &d) noexcept {
-  double const mq = fastd::max2(fastd::max_abs6(q1), fastd::max_abs6(q2));
+  double const mq1 = fastd::max_abs6(q1), mq2 = fastd::max_abs6(q2);
+  double const mq = fastd::max2(mq1, mq2);
   double const mr = fastd::max_abs3(r);
   if (mq > 0x1p-60 && mq < 0x1p60 && mr > 0x1p-30 && mr < 0x1p30)
-    return derivatives_dispatch(r, q1, q2, d);
+    return derivatives_dispatch(r, q1, q2,
+                                mq1 > kSafeLo && mq1 < kSafeHi && mq2 > kSafeLo && mq2 < kSafeHi,
+                                d);
   int ex;
   std::frexp(mq, &ex);
   int const e = -(ex / 2);
@@ -334,7 +340,7 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
     b[i] = std::ldexp(q2[i], 2 * e);
   }
   Derivatives s;
-  Status const status = derivatives_dispatch(rs, a, b, s);
+  Status const status = derivatives_dispatch(rs, a, b, false, s);
   if (status != kOk && status != kInaccurate) {
     d = s;  // all NaN
     return status;

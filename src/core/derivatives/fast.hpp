@@ -183,33 +183,47 @@ PW85_ALWAYS_INLINE bool fast_derivatives(double lambda, double mu2, Vec3 const &
   // and moved to lambda + dl to first order, X' = -X (Q2 - Q1) X, and a2, h
   // from the moved Q1 s, Q2 s (their remaining error ~t2^2, negligible).
   double tx = t2;
+  Sym3 const x_at = x;  // X at lambda, for refine_inverse
+  Sym3 xdx{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
+  Vec3 q1sm = q1s;
+  bool moved = false, refined = false;
   for (int pass = 0;; ++pass) {
     double const mh = max_abs3(h);
     double const e2 = pass == 0 ? eps2 : (eps_x + 8.0 * kU) * a_abs / a2;
-    double const err_h = 6.0 * mx * (eps_x * mw + err_w) + tx * mh;
     double const iha = 0.5 / a2;
     double mhess = 0.0;
     for (int k = 0; k < kSym; ++k) {
       o.hess_r12[k] = 2.0 * p * x[k] + h[kI[k]] * h[kJ[k]] * iha;
       mhess = max2(mhess, std::fabs(o.hess_r12[k]));
     }
-    double const err_hess = 3.0 * (2.0 * p * mx * (eps_x + tx + 2.0 * kU) +
-                                   (2.0 * mh * err_h + mh * mh * (e2 + tx + 2.0 * kU)) * iha);
-    if (err_hess <= kAcceptH * mhess) break;
-    if (pass == 1) return false;
-    double const ec = refine_inverse<F>(lambda, q1, q2, mx, x);
-    eps_x = 4.0 * ec * max2(ec, eps_x) + 2.0 * kU;
-    Sym3 const dq = difference(q2, q1);
-    Vec3 xc[kDim];
-    for (int j = 0; j < kDim; ++j) {
-      xc[j] = multiply(x, multiply(dq, column(x, j)));
+    // The estimate in two parts: from the error of X (and the rounding),
+    // and from lambda + dl (tx).
+    double const err_eps = 3.0 * (2.0 * p * mx * (eps_x + 2.0 * kU) +
+                                  (12.0 * mh * mx * (eps_x * mw + err_w) +
+                                   mh * mh * (e2 + 2.0 * kU)) * iha);
+    double const err_t = 3.0 * (2.0 * p * mx * tx + 3.0 * mh * mh * tx * iha);
+    if (err_eps + err_t <= kAcceptH * mhess) break;
+    if (refined) return false;
+    if (!moved) {
+      for (int j = 0; j < kDim; ++j) {
+        Vec3 const c = multiply(x, multiply(difference(q2, q1), column(x, j)));
+        if (j == 0) xdx[0] = c[0];
+        if (j == 1) xdx[1] = c[0], xdx[3] = c[1];
+        if (j == 2) xdx[2] = c[0], xdx[4] = c[1], xdx[5] = c[2];
+      }
+      // Second order: dl^2 X D X D X, relative ~ (move) t2.
+      tx = t2 * adl * max_abs6(xdx) / mx;
+      for (int i = 0; i < kDim; ++i) q1sm[i] = q1s[i] - q1v[i] * dl;
     }
-    Sym3 const xdx{{xc[0][0], xc[1][0], xc[2][0], xc[1][1], xc[2][1], xc[2][2]}};
-    for (int k = 0; k < kSym; ++k) x[k] -= xdx[k] * dl;
-    // Second order: dl^2 X D X D X, relative ~ (move) t2.
-    tx = t2 * adl * max_abs6(xdx) / mx;
-    Vec3 q1sm;
-    for (int i = 0; i < kDim; ++i) q1sm[i] = q1s[i] - q1v[i] * dl;
+    // Refine when the error of X dominates, or when moving alone failed.
+    if (moved || !(err_eps <= 0.5 * kAcceptH * mhess)) {
+      x = x_at;
+      double const ec = refine_inverse<F>(lambda, q1, q2, mx, x);
+      eps_x = 4.0 * ec * max2(ec, eps_x) + 2.0 * kU;
+      refined = true;
+    }
+    moved = true;
+    for (int k = 0; k < kSym; ++k) x[k] = (refined ? x[k] : x_at[k]) - xdx[k] * dl;
     a2 = dot(q1sm, multiply(x, q2s));
     h = multiply(x, w);
     for (int i = 0; i < kDim; ++i) h[i] *= 2.0;
