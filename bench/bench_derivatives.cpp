@@ -10,11 +10,17 @@
 // scale.
 //
 //   build/bench/bench_derivatives [--n 20000] [--reps 9] [--seed 20260521]
+//
+// --count M --class C: no timing; one pass of call M (none, default,
+// derivatives) over the pairs of class C, for instruction counts:
+// (Ir of M - Ir of none) / n under valgrind --tool=callgrind.
 #include <pw85.h>
 #include <time.h>
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <vector>
 
 #include "bench_common.hpp"
@@ -40,19 +46,34 @@ volatile double sink;
 int main(int argc, char **argv) {
   int n = 20000, reps = 9;
   uint64_t seed = 20260521;
+  int count = -1, only = -1;  // --count: 0 none, 1 default, 2 derivatives
   for (int i = 1; i < argc;) {
-    int const k = bench::common_option(argc, argv, i, n, reps, seed);
+    int k = bench::common_option(argc, argv, i, n, reps, seed);
+    if (k == 0 && i + 1 < argc && !std::strcmp(argv[i], "--class")) {
+      only = std::atoi(argv[i + 1]);
+      k = 2;
+    } else if (k == 0 && i + 1 < argc && !std::strcmp(argv[i], "--count")) {
+      char const *m = argv[i + 1];
+      count = !std::strcmp(m, "none") ? 0 : !std::strcmp(m, "default") ? 1
+              : !std::strcmp(m, "derivatives") ? 2 : -2;
+      k = count == -2 ? 0 : 2;
+    }
     if (k == 0) {
-      std::fprintf(stderr, "usage: %s [--n N] [--reps R] [--seed S]\n", argv[0]);
+      std::fprintf(stderr,
+                   "usage: %s [--n N] [--reps R] [--seed S] [--count none|default|derivatives "
+                   "--class C]\n",
+                   argv[0]);
       return 2;
     }
     i += k;
   }
   double const lo[4] = {0.5, 0.1, 0.01, 0.001}, hi[4] = {2.0, 10.0, 100.0, 1000.0};
-  std::printf("# bench_derivatives: %s, seed %llu, n %d per class, reps %d\n", pw85_version(),
-              (unsigned long long)seed, n, reps);
-  std::printf("# time: ns per call = (thread CPU time of one pass over the n pairs) / n, median over reps\n");
-  std::printf("class,axis_min,axis_max,n,default_ns,derivatives_ns,contact_ns,ratio_derivatives_default,n_status_nonzero\n");
+  if (count < 0) {
+    std::printf("# bench_derivatives: %s, seed %llu, n %d per class, reps %d\n", pw85_version(),
+                (unsigned long long)seed, n, reps);
+    std::printf("# time: ns per call = (thread CPU time of one pass over the n pairs) / n, median over reps\n");
+    std::printf("class,axis_min,axis_max,n,default_ns,derivatives_ns,contact_ns,ratio_derivatives_default,n_status_nonzero\n");
+  }
   bench::Rng g{seed};
   for (int c = 0; c < 4; ++c) {
     std::vector<double> r(3 * n), q1(6 * n), q2(6 * n);
@@ -64,6 +85,23 @@ int main(int argc, char **argv) {
       bench::q_from_axes(a2, m2, &q2[6 * k]);
       double const reach = *std::max_element(a1, a1 + 3) + *std::max_element(a2, a2 + 3);
       bench::random_offset(g, reach, bench::kContactSpan, &r[3 * k]);
+    }
+    if (count >= 0) {
+      if (c != only) continue;
+      double acc = 0.0;
+      for (int k = 0; k < n && count > 0; ++k) {
+        if (count == 1) {
+          pw85_result res;
+          pw85_contact_function_method(&r[3 * k], &q1[6 * k], &q2[6 * k], PW85_METHOD_DEFAULT, &res);
+          acc += res.mu2;
+        } else {
+          pw85_derivatives_t d;
+          pw85_contact_derivatives(&r[3 * k], &q1[6 * k], &q2[6 * k], &d);
+          acc += d.d_r12[0];
+        }
+      }
+      sink = acc;
+      continue;
     }
     std::vector<double> t_def, t_der, t_con;
     int bad = 0;

@@ -132,6 +132,18 @@ inline Vec3 chol_solve(CholInv const &c, Vec3 const &b) noexcept {
   return x;
 }
 
+// A^{-1} = L^{-T} L^{-1} from the factor of chol_inv: M = L^{-1} by forward
+// substitution, then the upper triangle of M^T M.
+inline Sym3 chol_inverse(CholInv const &c) noexcept {
+  Sym3 const &l = c.l;
+  double const m00 = c.i0, m11 = c.i1, m22 = c.i2;
+  double const m10 = -l[1] * m00 * m11;
+  double const m21 = -l[4] * m11 * m22;
+  double const m20 = -(l[2] * m00 + l[4] * m10) * m22;
+  return Sym3{{m00 * m00 + m10 * m10 + m20 * m20, m10 * m11 + m20 * m21, m20 * m22,
+               m11 * m11 + m21 * m21, m21 * m22, m22 * m22}};
+}
+
 // Adjugate (matrix of cofactors) of a symmetric matrix: adj(Q) Q = det(Q) I.
 inline Sym3 adjugate3(Sym3 const &q) noexcept {
   return Sym3{{q[3] * q[5] - q[4] * q[4], q[2] * q[4] - q[1] * q[5], q[1] * q[4] - q[2] * q[3],

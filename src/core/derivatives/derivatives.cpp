@@ -15,6 +15,9 @@
 //   d^2 mu^2 / d r^2 = 2 lambda (1 - lambda) Q^{-1} - h h^T / f'',
 //   h = d g / d lambda = 2 (1 - 2 lambda) s - 2 lambda (1 - lambda) Q^{-1} (Q2 - Q1) s.  (E6)
 //
+// Most pairs take the fast path of fast.hpp (E8); the others the refined
+// path (E7) below.
+//
 // Accuracy (E7): g depends on lambda to first order, so lambda from
 // PW85_METHOD_DEFAULT is refined by Newton steps on f'(lambda) = 0 with f' in
 // double-double (f_dd.hpp, refined_point_dd); s and the columns of Q^{-1} are
@@ -25,10 +28,12 @@
 #include "derivatives/derivatives.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "common/fp.hpp"
 #include "common/isa.hpp"
 #include "contact/contact.hpp"
+#include "derivatives/fast.hpp"
 #include "eval/f_dd.hpp"
 
 namespace pw85 {
@@ -149,21 +154,26 @@ PW85_ALWAYS_INLINE bool at_lambda(double lambda, Vec3 const &r, Sym3 const &q1, 
 }
 
 // contact_derivatives with the double-double products of arith/dd.hpp by
-// FMA (F = true) or Dekker's product.
+// FMA (F = true) or Dekker's product;
+// in_range: every magnitude inside (kSafeLo, kSafeHi) and r != 0, so that
+// DEFAULT is called without the dispatcher's checks (contact.hpp).
 template <bool F>
 PW85_ALWAYS_INLINE Status derivatives_impl(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                           Derivatives &d) noexcept {
-  double const nan = std::nan("");
+                                           bool in_range, Derivatives &d) noexcept {
+  static_assert(sizeof(Derivatives) == 29 * sizeof(double), "plain struct of 29 doubles");
+  MethodResult res;
+  Status const status = in_range ? contact_method_in_range(kMethodDefault, r, q1, q2, res)
+                                  : contact_method(kMethodDefault, r, q1, q2, res);
+  double lambda = res.lambda;
+  bool const solved = (status == kOk || status == kInaccurate) && lambda > 0.0 && lambda < 1.0;
+  // (E8): most pairs; otherwise the refined path (E7) below.
+  if (solved && fastd::fast_derivatives<F>(lambda, res.mu2, r, q1, q2, d)) return status;
+  double const nan = std::numeric_limits<double>::quiet_NaN();
   Derivatives out;
   double *const all = &out.mu2;
-  static_assert(sizeof(Derivatives) == 29 * sizeof(double), "plain struct of 29 doubles");
   for (int i = 0; i < kFields; ++i) all[i] = nan;
   d = out;
-  MethodResult res;
-  Status const status = contact_method(kMethodDefault, r, q1, q2, res);
-  if (status != kOk && status != kInaccurate) return kNoConvergence;
-  double lambda = res.lambda;
-  if (!(lambda > 0.0 && lambda < 1.0)) return kNoConvergence;
+  if (!solved) return kNoConvergence;
   Sym3 const dq = difference(q2, q1);
   // Newton steps on f'(lambda) = 0 (E7), f' in double-double, the slope
   // f'' by (E5) in double-double; usually none is needed: the maximiser is
@@ -291,17 +301,17 @@ PW85_ALWAYS_INLINE Status derivatives_impl(Vec3 const &r, Sym3 const &q1, Sym3 c
 
 #if PW85_ISA_FMA
 PW85_TARGET_FMA Status derivatives_fma(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                       Derivatives &d) noexcept {
-  return derivatives_impl<true>(r, q1, q2, d);
+                                       bool in_range, Derivatives &d) noexcept {
+  return derivatives_impl<true>(r, q1, q2, in_range, d);
 }
 #endif
 
 inline Status derivatives_dispatch(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                   Derivatives &d) noexcept {
+                                   bool in_range, Derivatives &d) noexcept {
 #if PW85_ISA_FMA
-  if (isa::has_fma()) return derivatives_fma(r, q1, q2, d);
+  if (isa::has_fma()) return derivatives_fma(r, q1, q2, in_range, d);
 #endif
-  return derivatives_impl<isa::kStaticFma>(r, q1, q2, d);
+  return derivatives_impl<isa::kStaticFma>(r, q1, q2, in_range, d);
 }
 
 }  // namespace
@@ -312,11 +322,13 @@ inline Status derivatives_dispatch(Vec3 const &r, Sym3 const &q1, Sym3 const &q2
 // Hessian by 2^2e; mu2, lambda and the torques are invariant.
 Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                            Derivatives &d) noexcept {
-  double mq = 0.0, mr = 0.0;
-  for (int i = 0; i < kSym; ++i) mq = std::fmax(mq, std::fmax(std::fabs(q1[i]), std::fabs(q2[i])));
-  for (int i = 0; i < kDim; ++i) mr = std::fmax(mr, std::fabs(r[i]));
+  double const mq1 = fastd::max_abs6(q1), mq2 = fastd::max_abs6(q2);
+  double const mq = fastd::max2(mq1, mq2);
+  double const mr = fastd::max_abs3(r);
   if (mq > 0x1p-60 && mq < 0x1p60 && mr > 0x1p-30 && mr < 0x1p30)
-    return derivatives_dispatch(r, q1, q2, d);
+    return derivatives_dispatch(r, q1, q2,
+                                mq1 > kSafeLo && mq1 < kSafeHi && mq2 > kSafeLo && mq2 < kSafeHi,
+                                d);
   int ex;
   std::frexp(mq, &ex);
   int const e = -(ex / 2);
@@ -328,7 +340,7 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
     b[i] = std::ldexp(q2[i], 2 * e);
   }
   Derivatives s;
-  Status const status = derivatives_dispatch(rs, a, b, s);
+  Status const status = derivatives_dispatch(rs, a, b, false, s);
   if (status != kOk && status != kInaccurate) {
     d = s;  // all NaN
     return status;
