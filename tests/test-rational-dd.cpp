@@ -1,5 +1,5 @@
 /* The rational step of PW85_METHOD_DEFAULT on x86-64-v4 (src/core/
- * f_rational_dd.hpp; docs/methods.md, "DEFAULT on x86-64-v4"), tested at
+ * eval/f_rational_dd.hpp; docs/methods.md, "PW85_METHOD_DEFAULT"), tested at
  * the library level: the one test program that includes internal headers,
  * because the public API cannot tell which path a call took. It checks the
  * error bounds the code states, against references computed here in

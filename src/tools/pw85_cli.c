@@ -9,7 +9,7 @@
  * One pair: prints mu^2, lambda and the overlap verdict; the exit status is
  * the verdict (0 no overlap, 1 overlap), 2 for bad usage, 3 when the library
  * returns an error status. Batch: one CSV row per pair; 0 when every line
- * gave PW85_OK, 3 otherwise. docs/usage.md, "The pw85 program".
+ * gave PW85_OK, 3 otherwise. docs/usage.md, "The `pw85` program".
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
