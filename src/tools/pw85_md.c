@@ -4,10 +4,11 @@
  *   pw85_md [--n N] [--steps S] [--dt DT] [--seed SEED] [--check]
  *
  * N ellipsoids (semi-axes 1, 0.6, 0.4, mass 1) in a periodic cubic box at
- * packing fraction 0.2, pair potential U = eps (1 - mu)^2 for mu < 1, zero
- * beyond (eps = 1). Forces F_j = -dU/dmu^2 d_r12 = -F_i, torques
+ * packing fraction 0.2, pair potential U = eps (1 - mu^2)^3 for mu < 1, zero
+ * beyond (eps = 1): twice continuously differentiable at contact, bounded
+ * forces. Forces F_j = -dU/dmu^2 d_r12 = -F_i, torques
  * tau_i = -dU/dmu^2 d_theta1, tau_j = -dU/dmu^2 d_theta2 with
- * dU/dmu^2 = -eps (1 - mu) / mu. Cell lists (cells of side >= 2, the largest
+ * dU/dmu^2 = -3 eps (1 - mu^2)^2. Cell lists (cells of side >= 2, the largest
  * contact distance), then one pw85_scene_contact_derivatives call per step
  * over the candidate pairs. Integrator: velocity Verlet for the centres; for
  * the orientations the symmetric splitting of the free rigid body into
@@ -112,11 +113,11 @@ static double forces(md_t *s, int *err) {
   }
   for (long long k = 0; k < m; k++) {
     const pw85_derivatives_t *d = s->d + k;
-    double mu = sqrt(d->mu2);
-    if (mu >= 1.0) continue;
+    if (d->mu2 >= 1.0) continue;
     long long i = s->pairs[2 * k], j = s->pairs[2 * k + 1];
-    double w = -kEps * (1.0 - mu) / mu; /* dU/dmu^2 */
-    u += kEps * (1.0 - mu) * (1.0 - mu);
+    double const g = 1.0 - d->mu2;
+    double w = -3.0 * kEps * g * g; /* dU/dmu^2 */
+    u += kEps * g * g * g;
     for (int e = 0; e < 3; e++) {
       s->f[3 * j + e] -= w * d->d_r12[e];
       s->f[3 * i + e] += w * d->d_r12[e];
