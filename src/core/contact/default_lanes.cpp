@@ -16,57 +16,26 @@
 
 #include "common/fp.hpp"
 #include "common/isa.hpp"
+#include "common/lanes.hpp"
 #include "common/screen.hpp"
 #include "contact/contact.hpp"
 #include "contact/default_params.hpp"
 #include "contact/start.hpp"
 #include "eval/f_dd.hpp"
 
-// Every function taking or returning a vector is always inline into the
-// variants below (no vector crosses a call).
-#if defined(__GNUC__)
-#pragma GCC diagnostic ignored "-Wpsabi"
-#endif
-
 namespace pw85 {
 
 namespace {
 
+using namespace lanes;
 constexpr int W = kDefaultLanes;
-typedef double V __attribute__((vector_size(8 * W)));
-typedef long long M __attribute__((vector_size(8 * W)));  // lane masks: 0 or -1
+static_assert(W == kLanes, "one vector per kDefaultLanes pairs");
 
 using namespace default_params;
 constexpr double kClamp = kLogNewtonClamp;
 // Halley steps tried in the lanes; the pairs that need more are left to the
 // one-pair call (which repeats them: same bits).
 constexpr int kLaneMaxIter = 8;
-
-constexpr long long kSign = static_cast<long long>(0x8000000000000000ULL);
-
-PW85_ALWAYS_INLINE V vabs(V x) noexcept {
-  return reinterpret_cast<V>(reinterpret_cast<M>(x) & (M{} + ~kSign));
-}
-PW85_ALWAYS_INLINE V select(M m, V a, V b) noexcept {
-  return reinterpret_cast<V>((m & reinterpret_cast<M>(a)) | (~m & reinterpret_cast<M>(b)));
-}
-// std::copysign(x, y), lane by lane.
-PW85_ALWAYS_INLINE V copysign(V x, V y) noexcept {
-  return reinterpret_cast<V>((reinterpret_cast<M>(x) & (M{} + ~kSign)) |
-                             (reinterpret_cast<M>(y) & (M{} + kSign)));
-}
-PW85_ALWAYS_INLINE V vsqrt(V x) noexcept {
-  V y;
-  for (int l = 0; l < W; ++l) y[l] = std::sqrt(x[l]);
-  return y;
-}
-// std::isfinite, lane by lane: x - x is 0 for finite x, NaN otherwise.
-PW85_ALWAYS_INLINE M finite(V x) noexcept { return (x - x) == 0.0; }
-PW85_ALWAYS_INLINE bool any(M m) noexcept {
-  long long a = 0;
-  for (int l = 0; l < W; ++l) a |= m[l];
-  return a != 0;
-}
 
 // Sym3 and Vec3 of lanes, and the sym3.hpp algebra in the same operation
 // order.

@@ -20,35 +20,19 @@
 
 #include "common/fp.hpp"
 #include "common/isa.hpp"
+#include "common/lanes.hpp"
 #include "overlap/bounded_sym.hpp"
 #include "overlap/overlap.hpp"
-
-// Every function taking or returning a vector is always inline into the
-// variants below (no vector crosses a call), so GCC's note that the ABI of
-// a 32-byte vector argument depends on AVX does not apply.
-#if defined(__GNUC__)
-#pragma GCC diagnostic ignored "-Wpsabi"
-#endif
 
 namespace pw85 {
 
 namespace {
 
+using namespace lanes;
 constexpr int W = kOverlapLanes;
-typedef double V __attribute__((vector_size(8 * W)));
-typedef long long M __attribute__((vector_size(8 * W)));  // lane masks: 0 or -1
+static_assert(W == kLanes, "one vector per kOverlapLanes pairs");
 
 constexpr double kC = kOverlapFilterC, kAbs = kOverlapFilterAbs;
-
-PW85_ALWAYS_INLINE V vabs(V x) noexcept {
-  return reinterpret_cast<V>(reinterpret_cast<M>(x) & (M{} + 0x7fffffffffffffffLL));
-}
-// m ? a : b, lane by lane.
-PW85_ALWAYS_INLINE V select(M m, V a, V b) noexcept {
-  return reinterpret_cast<V>((m & reinterpret_cast<M>(a)) | (~m & reinterpret_cast<M>(b)));
-}
-// a > b ? a : b (a NaN in a gives b), as v2::max of screen.hpp.
-PW85_ALWAYS_INLINE V vmax(V a, V b) noexcept { return select(a > b, a, b); }
 
 // A bounded value (eq. (O3)): v = fl(E), b = fl(P), as lanes 0 and 1 of
 // overlap.cpp's V2.
