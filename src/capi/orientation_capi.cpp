@@ -30,24 +30,16 @@ int pw85_ellipsoid_quat(double const radii[PW85_DIM], double const quat[4], doub
 int pw85_ellipsoid_rotation(double const radii[PW85_DIM], double const rot[PW85_DIM * PW85_DIM],
                             double q[PW85_SYM]) {
   if (q == nullptr) return PW85_ERR_INVALID_ARGUMENT;
-  if (radii == nullptr || rot == nullptr || !pw85::all_finite(radii, PW85_DIM) ||
-      !pw85::all_finite(rot, PW85_DIM * PW85_DIM)) {
+  if (rot == nullptr || !pw85::all_finite(rot, PW85_DIM * PW85_DIM)) {
     fill_nan(q, PW85_SYM);
     return PW85_ERR_INVALID_ARGUMENT;
   }
   // The body axes are the columns of rot: the rows of its transpose, the
-  // layout of pw85_ellipsoid.
+  // layout of pw85_ellipsoid (which checks radii and the rest).
   double axes[9];
   for (int i = 0; i < PW85_DIM; ++i)
     for (int j = 0; j < PW85_DIM; ++j) axes[3 * j + i] = rot[3 * i + j];
-  pw85::Sym3 s;
-  int const status = pw85::ellipsoid(pw85::load_vec3(radii), axes, 1e-10, s);
-  if (status != PW85_OK) {
-    fill_nan(q, PW85_SYM);
-    return status;
-  }
-  for (int i = 0; i < PW85_SYM; ++i) q[i] = s[i];
-  return PW85_OK;
+  return pw85_ellipsoid(radii, axes, q);
 }
 
 int pw85_ellipsoid_axes(double const q[PW85_SYM], double radii[PW85_DIM],
