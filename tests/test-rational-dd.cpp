@@ -23,7 +23,7 @@
 
 namespace {
 
-#if PW85_ISA_DISPATCH && defined(__SIZEOF_FLOAT128__)
+#if PW85_ISA_LEVELS && defined(__SIZEOF_FLOAT128__)
 typedef __float128 real;
 constexpr double kU = 0x1p-53;
 
@@ -227,7 +227,7 @@ void test_declines_cancellation(void) {
 
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
-#if PW85_ISA_DISPATCH && defined(__SIZEOF_FLOAT128__)
+#if PW85_ISA_LEVELS && defined(__SIZEOF_FLOAT128__)
   g_test_add_func("/rational-dd/coefficients", test_coefficients);
   g_test_add_func("/rational-dd/f-bounds", test_f_bounds);
   g_test_add_func("/rational-dd/declines-cancellation", test_declines_cancellation);
