@@ -19,36 +19,67 @@
 namespace pw85 {
 namespace lanes {
 
+// A vector of W doubles, for any W (4: AVX2, 8: AVX-512; a width the
+// target lacks is split by GCC).
+template <int W>
+struct Width {
+  typedef double V __attribute__((vector_size(8 * W)));
+};
+template <int W>
+using VecD = typename Width<W>::V;
+
+// The width of the lane loops that do not choose one per instruction set.
 constexpr int kLanes = 4;
-typedef double V __attribute__((vector_size(8 * kLanes)));
-typedef long long M __attribute__((vector_size(8 * kLanes)));  // lane masks: 0 or -1
+typedef VecD<kLanes> V;
 
 constexpr long long kSign = static_cast<long long>(0x8000000000000000ULL);
 
-PW85_ALWAYS_INLINE V vabs(V x) noexcept {
-  return reinterpret_cast<V>(reinterpret_cast<M>(x) & (M{} + ~kSign));
+// Number of lanes of a vector type.
+template <class T>
+constexpr int width() noexcept {
+  return static_cast<int>(sizeof(T) / sizeof(double));
+}
+// The mask type of a vector type (that of its comparisons): 0 or -1 per
+// lane.
+template <class T>
+using MaskOf = decltype(T{} < T{});
+template <int W>
+using MaskD = MaskOf<VecD<W>>;
+typedef MaskD<kLanes> M;
+
+template <class T>
+PW85_ALWAYS_INLINE T vabs(T x) noexcept {
+  typedef MaskOf<T> K;
+  return reinterpret_cast<T>(reinterpret_cast<K>(x) & (K{} + ~kSign));
 }
 // m ? a : b, lane by lane.
-PW85_ALWAYS_INLINE V select(M m, V a, V b) noexcept {
-  return reinterpret_cast<V>((m & reinterpret_cast<M>(a)) | (~m & reinterpret_cast<M>(b)));
+template <class K, class T>
+PW85_ALWAYS_INLINE T select(K m, T a, T b) noexcept {
+  return reinterpret_cast<T>((m & reinterpret_cast<K>(a)) | (~m & reinterpret_cast<K>(b)));
 }
 // a > b ? a : b (a NaN in a gives b), as v2::max of screen.hpp.
-PW85_ALWAYS_INLINE V vmax(V a, V b) noexcept { return select(a > b, a, b); }
+template <class T>
+PW85_ALWAYS_INLINE T vmax(T a, T b) noexcept { return select(a > b, a, b); }
 // std::copysign(x, y), lane by lane.
-PW85_ALWAYS_INLINE V copysign(V x, V y) noexcept {
-  return reinterpret_cast<V>((reinterpret_cast<M>(x) & (M{} + ~kSign)) |
-                             (reinterpret_cast<M>(y) & (M{} + kSign)));
+template <class T>
+PW85_ALWAYS_INLINE T copysign(T x, T y) noexcept {
+  typedef MaskOf<T> K;
+  return reinterpret_cast<T>((reinterpret_cast<K>(x) & (K{} + ~kSign)) |
+                             (reinterpret_cast<K>(y) & (K{} + kSign)));
 }
-PW85_ALWAYS_INLINE V vsqrt(V x) noexcept {
-  V y;
-  for (int l = 0; l < kLanes; ++l) y[l] = std::sqrt(x[l]);
+template <class T>
+PW85_ALWAYS_INLINE T vsqrt(T x) noexcept {
+  T y;
+  for (int l = 0; l < width<T>(); ++l) y[l] = std::sqrt(x[l]);
   return y;
 }
 // std::isfinite, lane by lane: x - x is 0 for finite x, NaN otherwise.
-PW85_ALWAYS_INLINE M finite(V x) noexcept { return (x - x) == 0.0; }
-PW85_ALWAYS_INLINE bool any(M m) noexcept {
+template <class T>
+PW85_ALWAYS_INLINE MaskOf<T> finite(T x) noexcept { return (x - x) == 0.0; }
+template <class K>
+PW85_ALWAYS_INLINE bool any(K m) noexcept {
   long long a = 0;
-  for (int l = 0; l < kLanes; ++l) a |= m[l];
+  for (int l = 0; l < width<K>(); ++l) a |= m[l];
   return a != 0;
 }
 
