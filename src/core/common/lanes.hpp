@@ -47,55 +47,39 @@ template <int W>
 using MaskD = MaskOf<VecD<W>>;
 typedef MaskD<kLanes> M;
 
-// Comparisons lane by lane: lt(x, y) is the mask of x < y, and so on (y a
-// vector or a double). A vector of 8 doubles is compared as its two halves
-// of 4: GCC 12 gives a comparison the mask type of the instruction set of
-// the function whose source holds it, so that a 512-bit comparison in a
-// portable always-inline body inlined into an x86-64-v4 function is
-// compiled lane by lane (vcomisd, setcc, insertion), while 256-bit halves
-// compile to vcmppd (overlap_lanes.cpp: docs/batch.md, "Throughput").
-namespace detail {
-template <class Op, class T>
-PW85_ALWAYS_INLINE MaskOf<T> compare(T x, T y) noexcept {
-  if constexpr (width<T>() == 8) {
-    VecD<4> const x0 = __builtin_shufflevector(x, x, 0, 1, 2, 3);
-    VecD<4> const x1 = __builtin_shufflevector(x, x, 4, 5, 6, 7);
-    VecD<4> const y0 = __builtin_shufflevector(y, y, 0, 1, 2, 3);
-    VecD<4> const y1 = __builtin_shufflevector(y, y, 4, 5, 6, 7);
-    return __builtin_shufflevector(Op::f(x0, y0), Op::f(x1, y1), 0, 1, 2, 3, 4, 5, 6, 7);
-  } else {
-    return Op::f(x, y);
-  }
-}
-#define PW85_LANES_COMPARISON(name, op)                                          \
-  struct name {                                                                  \
-    template <class T>                                                           \
-    PW85_ALWAYS_INLINE static MaskOf<T> f(T x, T y) noexcept { return x op y; } \
-  };
-PW85_LANES_COMPARISON(Lt, <)
-PW85_LANES_COMPARISON(Le, <=)
-PW85_LANES_COMPARISON(Gt, >)
-PW85_LANES_COMPARISON(Ge, >=)
-PW85_LANES_COMPARISON(Eq, ==)
-PW85_LANES_COMPARISON(Ne, !=)
-#undef PW85_LANES_COMPARISON
-}  // namespace detail
+// The unsigned mask type of a vector type: 0 or ~0 per lane.
+template <int W>
+struct UMaskWidth {
+  typedef unsigned long long M __attribute__((vector_size(8 * W)));
+};
+template <class T>
+using UMaskOf = typename UMaskWidth<width<T>()>::M;
 
-#define PW85_LANES_COMPARISON(name, Op)                                                 \
-  template <class T>                                                                    \
-  PW85_ALWAYS_INLINE MaskOf<T> name(T x, T y) noexcept {                                \
-    return detail::compare<detail::Op>(x, y);                                           \
-  }                                                                                     \
-  template <class T>                                                                    \
-  PW85_ALWAYS_INLINE MaskOf<T> name(T x, double y) noexcept {                           \
-    return detail::compare<detail::Op>(x, T{} + y);                                     \
+// Comparisons lane by lane as unsigned masks: lt(x, y) is x < y, and so on
+// (y a vector or a double). GCC 12 folds the & or | of two comparisons
+// that give the signed mask type (x < y as written) into a bitwise
+// operation on the comparisons' vectors of booleans, whose type is chosen
+// for the instruction set of the function the source is written in: in a
+// portable always-inline body inlined into an x86-64-v4 function, that
+// operation on 512-bit comparisons is then compiled lane by lane (vcomisd,
+// setcc, insertions). Converted to the unsigned mask type, a comparison is
+// not folded so and compiles to vcmppd into a mask register and a masked
+// move (overlap_lanes.cpp; docs/batch.md, "Throughput").
+#define PW85_LANES_COMPARISON(name, op)                                          \
+  template <class T>                                                             \
+  PW85_ALWAYS_INLINE UMaskOf<T> name(T x, T y) noexcept {                        \
+    return reinterpret_cast<UMaskOf<T>>(x op y);                                 \
+  }                                                                              \
+  template <class T>                                                             \
+  PW85_ALWAYS_INLINE UMaskOf<T> name(T x, double y) noexcept {                   \
+    return reinterpret_cast<UMaskOf<T>>(x op y);                                 \
   }
-PW85_LANES_COMPARISON(lt, Lt)
-PW85_LANES_COMPARISON(le, Le)
-PW85_LANES_COMPARISON(gt, Gt)
-PW85_LANES_COMPARISON(ge, Ge)
-PW85_LANES_COMPARISON(eq, Eq)
-PW85_LANES_COMPARISON(ne, Ne)
+PW85_LANES_COMPARISON(lt, <)
+PW85_LANES_COMPARISON(le, <=)
+PW85_LANES_COMPARISON(gt, >)
+PW85_LANES_COMPARISON(ge, >=)
+PW85_LANES_COMPARISON(eq, ==)
+PW85_LANES_COMPARISON(ne, !=)
 #undef PW85_LANES_COMPARISON
 
 template <class T>
@@ -110,7 +94,7 @@ PW85_ALWAYS_INLINE T select(K m, T a, T b) noexcept {
 }
 // a > b ? a : b (a NaN in a gives b), as v2::max of screen.hpp.
 template <class T>
-PW85_ALWAYS_INLINE T vmax(T a, T b) noexcept { return select(gt(a, b), a, b); }
+PW85_ALWAYS_INLINE T vmax(T a, T b) noexcept { return a > b ? a : b; }
 // std::copysign(x, y), lane by lane.
 template <class T>
 PW85_ALWAYS_INLINE T copysign(T x, T y) noexcept {
@@ -126,7 +110,7 @@ PW85_ALWAYS_INLINE T vsqrt(T x) noexcept {
 }
 // std::isfinite, lane by lane: x - x is 0 for finite x, NaN otherwise.
 template <class T>
-PW85_ALWAYS_INLINE MaskOf<T> finite(T x) noexcept { return eq(x - x, 0.0); }
+PW85_ALWAYS_INLINE MaskOf<T> finite(T x) noexcept { return (x - x) == 0.0; }
 template <class K>
 PW85_ALWAYS_INLINE bool any(K m) noexcept {
   long long a = 0;

@@ -81,7 +81,7 @@ PW85_ALWAYS_INLINE SymB<W> bound(VecD<W> const q[kSym]) noexcept {
 // The L D L^T pivot test of screen.hpp (ldl_positive) in every lane: all
 // pivots > 0 and finite.
 template <int W>
-PW85_ALWAYS_INLINE MaskD<W> pivots_positive(VecD<W> const x[kSym]) noexcept {
+PW85_ALWAYS_INLINE UMaskOf<VecD<W>> pivots_positive(VecD<W> const x[kSym]) noexcept {
   typedef VecD<W> V;
   V const i0 = 1.0 / x[0];
   V const l1 = x[1] * i0, l2 = x[2] * i0;
@@ -95,10 +95,10 @@ PW85_ALWAYS_INLINE MaskD<W> pivots_positive(VecD<W> const x[kSym]) noexcept {
 // pos_out lanes: p > 0 on [0, 1] (overlap); neg_out lanes: p(tau) <= -err
 // (separation).
 template <int W>
-PW85_ALWAYS_INLINE void subdivide(B<W> const x[5], VecD<W> ws, VecD<W> wt, MaskD<W> &pos_out,
-                                  MaskD<W> &neg_out) noexcept {
+PW85_ALWAYS_INLINE void subdivide(B<W> const x[5], VecD<W> ws, VecD<W> wt,
+                                  UMaskOf<VecD<W>> &pos_out, UMaskOf<VecD<W>> &neg_out) noexcept {
   typedef VecD<W> V;
-  typedef MaskD<W> M;
+  typedef UMaskOf<V> M;
   typedef B<W> Bw;
   V const sum = ws + wt;
   M const bits = reinterpret_cast<M>(sum);
@@ -130,7 +130,7 @@ template <int W>
 PW85_ALWAYS_INLINE void lanes_body(double const *const rp[W], double const *const q1p[W],
                                    double const *const q2p[W], int verdict[W]) noexcept {
   typedef VecD<W> V;
-  typedef MaskD<W> M;
+  typedef UMaskOf<V> M;  // the masks of the comparisons of lanes.hpp
   typedef B<W> Bw;
   V r[kDim], a[kSym], b[kSym];
   for (int i = 0; i < kDim; ++i)
@@ -201,7 +201,8 @@ PW85_ALWAYS_INLINE void lanes_body(double const *const rp[W], double const *cons
     one |= open & sub_pos;
     zero |= open & ~sub_pos & sub_neg;
   }
-  M const v = -1 - 2 * one - zero;  // 1, 0 or kUndecided (-1)
+  typedef MaskOf<V> S;
+  S const v = -1 - 2 * reinterpret_cast<S>(one) - reinterpret_cast<S>(zero);  // 1, 0 or -1
   for (int l = 0; l < W; ++l) verdict[l] = static_cast<int>(v[l]);
 }
 
