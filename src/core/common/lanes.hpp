@@ -118,5 +118,54 @@ PW85_ALWAYS_INLINE bool any(K m) noexcept {
   return a != 0;
 }
 
+// out[i][l] = p[l][i] for i < N, l < W: N doubles at each of W pointers,
+// element i of pair l in lane l of out[i]. For W = 8, elements 4k ... 4k + 3
+// are loaded as one 256-bit vector per pair and those pairs of elements
+// after them as one 128-bit vector per pair, then transposed by shuffles:
+// written lane by lane, GCC 12 builds these vectors in pieces through the
+// stack (measured: docs/batch.md, "Throughput").
+template <int N, int W>
+PW85_ALWAYS_INLINE void gather(double const *const p[W], VecD<W> out[N]) noexcept {
+  int i = 0;
+#if defined(__has_builtin)
+#if __has_builtin(__builtin_shufflevector)
+  if constexpr (W == 8) {
+    typedef VecD<2> V2;
+    typedef VecD<4> V4;
+    typedef VecD<8> V8;
+    for (; i + 4 <= N; i += 4) {
+      V4 w[8];
+      for (int l = 0; l < 8; ++l) __builtin_memcpy(&w[l], p[l] + i, sizeof(V4));
+      V8 z[4];  // z[j] = elements of pairs j and j + 4
+      for (int j = 0; j < 4; ++j) z[j] = __builtin_shufflevector(w[j], w[j + 4], 0, 1, 2, 3, 4, 5, 6, 7);
+      V8 const t0 = __builtin_shufflevector(z[0], z[1], 0, 8, 2, 10, 4, 12, 6, 14);
+      V8 const t1 = __builtin_shufflevector(z[0], z[1], 1, 9, 3, 11, 5, 13, 7, 15);
+      V8 const t2 = __builtin_shufflevector(z[2], z[3], 0, 8, 2, 10, 4, 12, 6, 14);
+      V8 const t3 = __builtin_shufflevector(z[2], z[3], 1, 9, 3, 11, 5, 13, 7, 15);
+      out[i] = __builtin_shufflevector(t0, t2, 0, 1, 8, 9, 4, 5, 12, 13);
+      out[i + 1] = __builtin_shufflevector(t1, t3, 0, 1, 8, 9, 4, 5, 12, 13);
+      out[i + 2] = __builtin_shufflevector(t0, t2, 2, 3, 10, 11, 6, 7, 14, 15);
+      out[i + 3] = __builtin_shufflevector(t1, t3, 2, 3, 10, 11, 6, 7, 14, 15);
+    }
+    for (; i + 2 <= N; i += 2) {
+      V2 h[8];
+      for (int l = 0; l < 8; ++l) __builtin_memcpy(&h[l], p[l] + i, sizeof(V2));
+      V4 y[4];  // pairs {0, 2}, {1, 3}, {4, 6}, {5, 7}
+      for (int j = 0; j < 4; ++j) {
+        int const l = (j & 1) + 4 * (j >> 1);
+        y[j] = __builtin_shufflevector(h[l], h[l + 2], 0, 1, 2, 3);
+      }
+      V8 const z0 = __builtin_shufflevector(y[0], y[2], 0, 1, 2, 3, 4, 5, 6, 7);  // even pairs
+      V8 const z1 = __builtin_shufflevector(y[1], y[3], 0, 1, 2, 3, 4, 5, 6, 7);  // odd pairs
+      out[i] = __builtin_shufflevector(z0, z1, 0, 8, 2, 10, 4, 12, 6, 14);
+      out[i + 1] = __builtin_shufflevector(z0, z1, 1, 9, 3, 11, 5, 13, 7, 15);
+    }
+  }
+#endif
+#endif
+  for (; i < N; ++i)
+    for (int l = 0; l < W; ++l) out[i][l] = p[l][i];
+}
+
 }  // namespace lanes
 }  // namespace pw85

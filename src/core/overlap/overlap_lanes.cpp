@@ -133,13 +133,9 @@ PW85_ALWAYS_INLINE void lanes_body(double const *const rp[W], double const *cons
   typedef UMaskOf<V> M;  // the masks of the comparisons of lanes.hpp
   typedef B<W> Bw;
   V r[kDim], a[kSym], b[kSym];
-  for (int i = 0; i < kDim; ++i)
-    for (int l = 0; l < W; ++l) r[i][l] = rp[l][i];
-  for (int i = 0; i < kSym; ++i)
-    for (int l = 0; l < W; ++l) {
-      a[i][l] = q1p[l][i];
-      b[i][l] = q2p[l][i];
-    }
+  gather<kDim, W>(rp, r);
+  gather<kSym, W>(q1p, a);
+  gather<kSym, W>(q2p, b);
   // --- Screen (screen.hpp, screen_pair_ldl), and r != 0. ---
   V qm = vabs(a[0]);
   for (int i = 1; i < kSym; ++i) qm = vmax(qm, vabs(a[i]));
