@@ -155,11 +155,7 @@ PW85_ALWAYS_INLINE void lanes_body(double const *const rp[W], double const *cons
   V const d = (rdr * rdr) * (1.0 - 16 * kU) - (A1 + A2) * (1.0 + 16 * kU);
   M const plane =
       gt(d, 0.0) & ge((d * d) * (1.0 - 16 * kU), (4.0 * (A1 * A2)) * (1.0 + 16 * kU) + 0x1p-1000);
-  V h1, h2;
-  for (int l = 0; l < W; ++l) {
-    h1[l] = __builtin_sqrt(A1[l]);
-    h2[l] = __builtin_sqrt(A2[l]);
-  }
+  V const h1 = vsqrt(A1), h2 = vsqrt(A2);
   // --- Coefficients of p (O10), then (O13) and (O18) at tau0. ---
   Bw m1[kSym], m2[kSym], mm[kSym];
   Bw const det1 = det_adj(b1q, m1), det2 = det_adj(b2q, m2);
@@ -187,12 +183,7 @@ PW85_ALWAYS_INLINE void lanes_body(double const *const rp[W], double const *cons
     V const n[kDim] = {adj[0] * r[0] + adj[1] * r[1] + adj[2] * r[2],
                        adj[1] * r[0] + adj[3] * r[1] + adj[4] * r[2],
                        adj[2] * r[0] + adj[4] * r[1] + adj[5] * r[2]};
-    V const gg1 = quad_form<W>(a, n), gg2 = quad_form<W>(b, n);
-    V g1, g2;
-    for (int l = 0; l < W; ++l) {
-      g1[l] = __builtin_sqrt(gg1[l]);
-      g2[l] = __builtin_sqrt(gg2[l]);
-    }
+    V const g1 = vsqrt(quad_form<W>(a, n)), g2 = vsqrt(quad_form<W>(b, n));
     subdivide<W>(x, g2, g1, sub_pos, sub_neg);
     one |= open & sub_pos;
     zero |= open & ~sub_pos & sub_neg;
