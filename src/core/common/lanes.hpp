@@ -1,4 +1,4 @@
-// Vectors of kLanes doubles (GCC vector extensions) and their lane-by-lane
+// Vectors of doubles (GCC vector extensions) and their lane-by-lane
 // helpers, for the loops that process several pairs at once
 // (overlap/overlap_lanes.cpp, contact/default_lanes.cpp; docs/batch.md,
 // "Throughput"). No operation mixes lanes.
@@ -64,7 +64,8 @@ using UMaskOf = typename UMaskWidth<width<T>()>::M;
 // operation on 512-bit comparisons is then compiled lane by lane (vcomisd,
 // setcc, insertions). Converted to the unsigned mask type, a comparison is
 // not folded so and compiles to vcmppd into a mask register and a masked
-// move (overlap_lanes.cpp; docs/batch.md, "Throughput").
+// move (pw85_overlap_pairs, x86-64-v4, class 0: 23.8 ns per pair with the
+// signed masks, 11.6 with these; build/bench/bench_batch --reps 7).
 #define PW85_LANES_COMPARISON(name, op)                                          \
   template <class T>                                                             \
   PW85_ALWAYS_INLINE UMaskOf<T> name(T x, T y) noexcept {                        \
@@ -92,7 +93,8 @@ template <class K, class T>
 PW85_ALWAYS_INLINE T select(K m, T a, T b) noexcept {
   return reinterpret_cast<T>((m & reinterpret_cast<K>(a)) | (~m & reinterpret_cast<K>(b)));
 }
-// a > b ? a : b (a NaN in a gives b), as v2::max of screen.hpp.
+// a > b ? a : b (a NaN in a gives b), as v2::max of screen.hpp; as a
+// vector conditional, one vmaxpd on x86.
 template <class T>
 PW85_ALWAYS_INLINE T vmax(T a, T b) noexcept { return a > b ? a : b; }
 // std::copysign(x, y), lane by lane.
@@ -123,7 +125,8 @@ PW85_ALWAYS_INLINE bool any(K m) noexcept {
 // are loaded as one 256-bit vector per pair and those pairs of elements
 // after them as one 128-bit vector per pair, then transposed by shuffles:
 // written lane by lane, GCC 12 builds these vectors in pieces through the
-// stack (measured: docs/batch.md, "Throughput").
+// stack (pw85_overlap_pairs, x86-64-v4, class 0: 11.6 ns per pair that way,
+// 10.6 this way; build/bench/bench_batch --reps 7, same load).
 template <int N, int W>
 PW85_ALWAYS_INLINE void gather(double const *const p[W], VecD<W> out[N]) noexcept {
   int i = 0;
@@ -137,7 +140,8 @@ PW85_ALWAYS_INLINE void gather(double const *const p[W], VecD<W> out[N]) noexcep
       V4 w[8];
       for (int l = 0; l < 8; ++l) __builtin_memcpy(&w[l], p[l] + i, sizeof(V4));
       V8 z[4];  // z[j] = elements of pairs j and j + 4
-      for (int j = 0; j < 4; ++j) z[j] = __builtin_shufflevector(w[j], w[j + 4], 0, 1, 2, 3, 4, 5, 6, 7);
+      for (int j = 0; j < 4; ++j)
+        z[j] = __builtin_shufflevector(w[j], w[j + 4], 0, 1, 2, 3, 4, 5, 6, 7);
       V8 const t0 = __builtin_shufflevector(z[0], z[1], 0, 8, 2, 10, 4, 12, 6, 14);
       V8 const t1 = __builtin_shufflevector(z[0], z[1], 1, 9, 3, 11, 5, 13, 7, 15);
       V8 const t2 = __builtin_shufflevector(z[2], z[3], 0, 8, 2, 10, 4, 12, 6, 14);

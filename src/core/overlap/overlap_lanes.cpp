@@ -4,11 +4,12 @@
 // overlap.cpp, filters_inline), for W pairs at once, pair l in lane l of
 // each vector of W doubles (W = kOverlapLanesV4 = 8 in the x86-64-v4
 // variant, one AVX-512 register; kOverlapLanes = 4 in the others). Every
-// lane performs the operations of the one-pair code on its own pair only (no operation mixes lanes), and a lane is decided only
-// by a certificate whose error bound (O3) holds lane by lane exactly as in
-// the scalar code: a bounded value is the pair of vectors (fl(E), fl(P))
-// that overlap.cpp keeps in the two halves of one SSE2 register, with the
-// same operations in the same order. Decided verdicts are therefore exact
+// lane performs the operations of the one-pair code on its own pair only
+// (no operation mixes lanes), and a lane is decided only by a certificate
+// whose error bound (O3) holds lane by lane exactly as in the scalar code: a
+// bounded value is the pair of vectors (fl(E), fl(P)) that overlap.cpp keeps
+// in the two halves of one SSE2 register, with the same operations in the
+// same order. Decided verdicts are therefore exact
 // and equal to pw85_overlap's; the lanes that fail the screen (r = 0,
 // non-finite, outside the safe range (O9), a non-positive pivot) or that
 // these certificates leave open are returned undecided, for the caller's
@@ -217,21 +218,25 @@ int overlap_lanes_width() noexcept {
   return kOverlapLanes;
 }
 
-// Each width runs on every CPU: 8 lanes in the x86-64-v4 variant, 4 in the
-// x86-64-v3 one, else the portable body (whose vectors GCC splits into
-// those of the target).
+// Each width runs on every CPU: kOverlapLanesV4 lanes in the x86-64-v4
+// variant, else as blocks of kOverlapLanes; kOverlapLanes lanes in the
+// x86-64-v3 variant, else in the portable body.
 template <int W>
 void overlap_lanes(double const *const r[W], double const *const q1[W], double const *const q2[W],
                    int verdict[W]) noexcept {
   static_assert(W == kOverlapLanes || W == kOverlapLanesV4, "the widths of overlap.hpp");
-#if PW85_ISA_LEVELS
   if constexpr (W == kOverlapLanesV4) {
+#if PW85_ISA_LEVELS
     if (isa::has_v4()) return lanes_v4(r, q1, q2, verdict);
-  } else {
-    if (isa::has_v3()) return lanes_v3(r, q1, q2, verdict);
-  }
 #endif
-  lanes_body<W>(r, q1, q2, verdict);
+    for (int l = 0; l < W; l += kOverlapLanes)
+      overlap_lanes<kOverlapLanes>(r + l, q1 + l, q2 + l, verdict + l);
+  } else {
+#if PW85_ISA_LEVELS
+    if (isa::has_v3()) return lanes_v3(r, q1, q2, verdict);
+#endif
+    lanes_body<W>(r, q1, q2, verdict);
+  }
 }
 
 template void overlap_lanes<kOverlapLanes>(double const *const[kOverlapLanes],
