@@ -31,7 +31,6 @@ namespace pw85 {
 namespace {
 
 using namespace lanes;
-static_assert(kOverlapLanes == kLanes, "one vector per kOverlapLanes pairs");
 
 constexpr double kC = kOverlapFilterC, kAbs = kOverlapFilterAbs;
 
