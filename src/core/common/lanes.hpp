@@ -65,7 +65,8 @@ using UMaskOf = typename UMaskWidth<width<T>()>::M;
 // setcc, insertions). Converted to the unsigned mask type, a comparison is
 // not folded so and compiles to vcmppd into a mask register and a masked
 // move (pw85_overlap_pairs, x86-64-v4, class 0: 23.8 ns per pair with the
-// signed masks, 11.6 with these; build/bench/bench_batch --reps 7).
+// signed masks and vmax below as a select, 11.6 with these and vmax as
+// written; build/bench/bench_batch --reps 7).
 #define PW85_LANES_COMPARISON(name, op)                                          \
   template <class T>                                                             \
   PW85_ALWAYS_INLINE UMaskOf<T> name(T x, T y) noexcept {                        \
@@ -94,7 +95,8 @@ PW85_ALWAYS_INLINE T select(K m, T a, T b) noexcept {
   return reinterpret_cast<T>((m & reinterpret_cast<K>(a)) | (~m & reinterpret_cast<K>(b)));
 }
 // a > b ? a : b (a NaN in a gives b), as v2::max of screen.hpp; as a
-// vector conditional, one vmaxpd on x86.
+// vector conditional, one vmaxpd on x86 (as select(gt(a, b), a, b), a
+// comparison, a masked move and a blend).
 template <class T>
 PW85_ALWAYS_INLINE T vmax(T a, T b) noexcept { return a > b ? a : b; }
 // std::copysign(x, y), lane by lane.
