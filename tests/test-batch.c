@@ -657,10 +657,11 @@ static void make_lane_pairs(lane_pairs *s, int cls, guint32 seed) {
  * "Throughput") against pw85_overlap on the pairs above with bad ones among
  * them (NaN r12, a matrix not positive definite, an infinite entry, a zero
  * matrix): every verdict and status bitwise equal, for the whole array on 1
- * and 2 threads, for arrays of m = 1 ... 9 pairs starting at every offset
- * 0 ... 47 (each pair in every lane position and in the tail, next to bad
- * pairs), and through pw85_scene_overlap and pw85_overlap_batch on the
- * scene of the same pairs; the verdicts known from mu2_ref all right. */
+ * and 2 threads, for arrays of m = 1 ... 17 pairs starting at every offset
+ * 0 ... 47 (each pair in every lane position of blocks of 4 or 8 lanes and
+ * in the tail, next to bad pairs), and through pw85_scene_overlap and
+ * pw85_overlap_batch on the scene of the same pairs; the verdicts known from
+ * mu2_ref all right. */
 static void test_overlap_lanes(gconstpointer data) {
   int const cls = *(const int *)data;
   static lane_pairs s;
@@ -697,7 +698,7 @@ static void test_overlap_lanes(gconstpointer data) {
     g_assert_true(memcmp(out, exp, sizeof out) == 0);
     g_assert_true(memcmp(st, exp_st, sizeof st) == 0);
   }
-  for (int m = 1; m <= 9; m++)
+  for (int m = 1; m <= 17; m++)
     for (int k0 = 0; k0 < 48; k0++) {
       int lowest = PW85_OK;
       for (int k = k0 + m - 1; k >= k0; k--)

@@ -143,24 +143,29 @@ int run_blocks(long long m, int *status, int nthreads, int chunk, Block block,
       n = 1;
       res[0] = one(k0);
     }
-    for (int l = 0; l < n; ++l) {
-      if (status != nullptr) status[k0 + l] = res[l];
-      if (res[l] != PW85_OK && k0 + l < first_bad) first_bad = k0 + l;
-    }
+    if (status != nullptr)
+      for (int l = 0; l < n; ++l) status[k0 + l] = res[l];
+    // The block's first failure only: GCC compiles a minimum over every lane
+    // to a chain of dependent conditional moves, carried from block to block
+    // (pw85_overlap_pairs, x86-64-v4, class 0: 11.0 ns per pair that way,
+    // 9.3 this way; build/bench/bench_batch --reps 9 --threads-n 0).
+    for (int l = 0; l < n; ++l)
+      if (res[l] != PW85_OK) {
+        if (k0 + l < first_bad) first_bad = k0 + l;
+        break;
+      }
   }
   return first_bad == m ? PW85_OK : one(first_bad);
 }
 
-// Overlap of pairs k0 ... k0 + kOverlapLanes - 1 through the lanes of
-// overlap_lanes (docs/batch.md, "Throughput"): pair(k, buf, r12, q1, q2)
-// gives pair k's arguments (r12 may point to buf, which it may fill; false:
-// the pair fails with
-// PW85_ERR_INVALID_ARGUMENT); a lane that overlap_lanes leaves undecided is
-// computed by pw85_overlap. Writes overlap[k] and res[k - k0] as the
-// one-pair loop would.
-template <class Pair>
+// Overlap of pairs k0 ... k0 + w - 1 through the w lanes of overlap_lanes
+// (docs/batch.md, "Throughput"): pair(k, buf, r12, q1, q2) gives pair k's
+// arguments (r12 may point to buf, which it may fill; false: the pair fails
+// with PW85_ERR_INVALID_ARGUMENT); a lane that overlap_lanes leaves
+// undecided is computed by pw85_overlap. Writes overlap[k] and res[k - k0]
+// as the one-pair loop would.
+template <int w, class Pair>
 void overlap_block(long long k0, Pair pair, int *overlap, int res[]) noexcept {
-  constexpr int w = pw85::kOverlapLanes;
   static constexpr double kZero[6] = {0, 0, 0, 0, 0, 0};  // r = 0: never decided by the lanes
   double buf[w][3];
   double const *rp[w], *q1p[w], *q2p[w];
@@ -170,13 +175,35 @@ void overlap_block(long long k0, Pair pair, int *overlap, int res[]) noexcept {
     if (!ok[l]) rp[l] = q1p[l] = q2p[l] = kZero;
   }
   int v[w];
-  pw85::overlap_lanes(rp, q1p, q2p, v);
+  pw85::overlap_lanes<w>(rp, q1p, q2p, v);
   for (int l = 0; l < w; ++l) {
     int const o = !ok[l] ? PW85_ERR_INVALID_ARGUMENT
                          : v[l] >= 0 ? v[l] : pw85_overlap(rp[l], q1p[l], q2p[l]);
     overlap[k0 + l] = o;
     res[l] = o < 0 ? o : PW85_OK;
   }
+}
+
+// The loop of the overlap calls: run_blocks over blocks of
+// overlap_lanes_width() pairs through overlap_block (pair as there), one(k)
+// for the rest and the returned status.
+template <class Pair, class One>
+int run_overlap(long long m, int *status, int nthreads, Pair pair, int *overlap,
+                One one) noexcept {
+  constexpr int kChunk = 256;
+  if (pw85::overlap_lanes_width() == pw85::kOverlapLanesV4)
+    return run_blocks<pw85::kOverlapLanesV4>(
+        m, status, nthreads, kChunk,
+        [&](long long k0, int res[]) noexcept {
+          overlap_block<pw85::kOverlapLanesV4>(k0, pair, overlap, res);
+        },
+        one);
+  return run_blocks<pw85::kOverlapLanes>(
+      m, status, nthreads, kChunk,
+      [&](long long k0, int res[]) noexcept {
+        overlap_block<pw85::kOverlapLanes>(k0, pair, overlap, res);
+      },
+      one);
 }
 
 // The index-pair loop of the *_batch functions: checks the call's arguments,
@@ -464,8 +491,8 @@ int scene(long long n, double const *centres, double const *q, Box const &box, l
 }
 
 // The loop of pw85_scene_overlap and pw85_overlap_batch after their
-// argument checks: blocks of kOverlapLanes pairs through overlap_block, the
-// rest (and the returned status) by pw85_overlap pair by pair.
+// argument checks: blocks of pairs through run_overlap, the rest (and the
+// returned status) by pw85_overlap pair by pair.
 int scene_overlap(long long n, double const *centres, double const *q, Box const &box,
                   long long m, long long const *pairs, int *overlap, int *status,
                   int nthreads) noexcept {
@@ -477,22 +504,17 @@ int scene_overlap(long long n, double const *centres, double const *q, Box const
     overlap[k] = res;
     return res < 0 ? res : PW85_OK;
   };
-  auto block = [&](long long k0, int res[]) noexcept {
-    overlap_block(
-        k0,
-        [&](long long k, double *buf, double const *&r, double const *&a,
-            double const *&b) noexcept {
-          prefetch_pair(n, centres, q, pairs, m, k);
-          long long i, j;
-          r = buf;
-          if (scene_r12(n, centres, q, box, pairs, k, buf, i, j) != PW85_OK) return false;
-          a = q + 6 * i;
-          b = q + 6 * j;
-          return true;
-        },
-        overlap, res);
+  auto pair = [&](long long k, double *buf, double const *&r, double const *&a,
+                  double const *&b) noexcept {
+    prefetch_pair(n, centres, q, pairs, m, k);
+    long long i, j;
+    r = buf;
+    if (scene_r12(n, centres, q, box, pairs, k, buf, i, j) != PW85_OK) return false;
+    a = q + 6 * i;
+    b = q + 6 * j;
+    return true;
   };
-  return run_blocks<pw85::kOverlapLanes>(m, status, nthreads, 256, block, one);
+  return run_overlap(m, status, nthreads, pair, overlap, one);
 }
 
 inline bool scene_args(long long n, double const *centres, double const *q, double const *box,
@@ -517,19 +539,14 @@ int pw85_overlap_pairs(long long m, double const *r12, double const *q1, double 
     overlap[k] = res;
     return res < 0 ? res : PW85_OK;
   };
-  auto block = [&](long long k0, int res[]) noexcept {
-    overlap_block(
-        k0,
-        [&](long long k, double *, double const *&r, double const *&a,
-            double const *&b) noexcept {
-          r = r12 + 3 * k;
-          a = q1 + 6 * k;
-          b = q2 + 6 * k;
-          return true;
-        },
-        overlap, res);
+  auto pair = [&](long long k, double *, double const *&r, double const *&a,
+                  double const *&b) noexcept {
+    r = r12 + 3 * k;
+    a = q1 + 6 * k;
+    b = q2 + 6 * k;
+    return true;
   };
-  return run_blocks<pw85::kOverlapLanes>(m, status, nthreads, 256, block, one);
+  return run_overlap(m, status, nthreads, pair, overlap, one);
 }
 
 int pw85_contact_function_pairs(long long m, double const *r12, double const *q1,

@@ -57,14 +57,28 @@ bool overlap_screened(double const *r, double const *q1, double const *q2, int &
                       Status &status) noexcept;
 
 // The screen and the first certificates of the filters ((O11), (O13),
-// (O18) at tau0 and tau1) for kOverlapLanes pairs at once, pair l = (r[l], q1[l],
+// (O18) at tau0 and tau1) for W pairs at once, pair l = (r[l], q1[l],
 // q2[l]) in lane l (overlap_lanes.cpp): verdict[l] = 1 or 0, exact and
 // equal to pw85_overlap's, or -1 when the lane is not decided there (the
 // caller then calls pw85_overlap). Reads 3 and 6 doubles at each pointer;
-// any values (NaN included) are accepted.
+// any values (NaN included) are accepted. W is kOverlapLanes or
+// kOverlapLanesV4; both run on every CPU, and overlap_lanes_width() is the
+// one to use on this CPU (kOverlapLanesV4 on x86-64-v4: one AVX-512
+// register per vector).
 constexpr int kOverlapLanes = 4;
-void overlap_lanes(double const *const r[kOverlapLanes], double const *const q1[kOverlapLanes],
-                   double const *const q2[kOverlapLanes], int verdict[kOverlapLanes]) noexcept;
+constexpr int kOverlapLanesV4 = 8;
+int overlap_lanes_width() noexcept;
+template <int W>
+void overlap_lanes(double const *const r[W], double const *const q1[W], double const *const q2[W],
+                   int verdict[W]) noexcept;
+extern template void overlap_lanes<kOverlapLanes>(double const *const[kOverlapLanes],
+                                                  double const *const[kOverlapLanes],
+                                                  double const *const[kOverlapLanes],
+                                                  int[kOverlapLanes]) noexcept;
+extern template void overlap_lanes<kOverlapLanesV4>(double const *const[kOverlapLanesV4],
+                                                    double const *const[kOverlapLanesV4],
+                                                    double const *const[kOverlapLanesV4],
+                                                    int[kOverlapLanesV4]) noexcept;
 
 // The exact stage alone (no filter): same contract as overlap().
 Status overlap_exact(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,

@@ -1,0 +1,135 @@
+/* The overlap lanes of both widths (src/core/overlap/overlap_lanes.cpp;
+ * docs/batch.md, "Throughput"), called directly: the batch calls of the
+ * public API take only the width overlap_lanes_width() picks, so without
+ * this program overlap_lanes<4> would never run on an AVX-512 machine, nor
+ * overlap_lanes<8> without one. Linked with the library's own object
+ * (fma_kernels). Natively on an AVX-512 machine, <8> runs the x86-64-v4
+ * variant and <4> the x86-64-v3 one; under valgrind (overlap-lanes-valgrind:
+ * no AVX-512 emulated) <8> runs as blocks of 4; with isa_dispatch=false both
+ * run the portable body.
+ *
+ * For 2048 pairs of each class of bench_batch (semi-axes log-uniform in
+ * [0.5, 2] ... [0.001, 1000], centre offsets from deep overlap to 3.2 times
+ * the reach) with bad pairs among them (r12 = 0, NaN r12, a matrix not
+ * positive definite, an infinite entry, a zero matrix), in blocks at every
+ * offset 0 ... W - 1 (so that each pair visits every lane, next to other
+ * neighbours): every decided lane (verdict 0 or 1) equals pw85_overlap's
+ * verdict, a bad pair is never decided, each pair gets the same verdict in
+ * every lane position, and at least 95 % of the good pairs are decided. */
+#include <cmath>
+#include <vector>
+
+#include <glib.h>
+
+#include "overlap/overlap.hpp"
+#include "pw85.h"
+#include "../bench/bench_common.hpp"
+
+namespace {
+
+constexpr int kPairs = 2048;
+
+struct Pairs {
+  std::vector<double> r, q1, q2;
+  std::vector<int> ref;   // pw85_overlap: 1, 0 or a negative status
+  std::vector<bool> bad;  // an argument pw85_overlap rejects, or r12 = 0
+};
+
+Pairs make_pairs(int cls) {
+  double const lo[4] = {0.5, 0.1, 0.01, 0.001}, hi[4] = {2.0, 10.0, 100.0, 1000.0};
+  bench::Rng g{1234u + static_cast<unsigned>(cls)};
+  Pairs p;
+  p.r.resize(3 * kPairs);
+  p.q1.resize(6 * kPairs);
+  p.q2.resize(6 * kPairs);
+  p.ref.resize(kPairs);
+  p.bad.assign(kPairs, false);
+  for (int k = 0; k < kPairs; ++k) {
+    double a1[3], a2[3], rot[3][3];
+    bench::random_axes(g, lo[cls], hi[cls], a1, rot);
+    bench::q_from_axes(a1, rot, &p.q1[6 * k]);
+    bench::random_axes(g, lo[cls], hi[cls], a2, rot);
+    bench::q_from_axes(a2, rot, &p.q2[6 * k]);
+    double const reach = std::fmax(a1[0], std::fmax(a1[1], a1[2])) +
+                         std::fmax(a2[0], std::fmax(a2[1], a2[2]));
+    bench::random_offset(g, reach, bench::kContactSpan, &p.r[3 * k]);
+  }
+  for (int k = 5; k < kPairs; k += 97) {
+    p.bad[k] = true;
+    switch ((k / 97) % 5) {
+      case 0: p.r[3 * k] = p.r[3 * k + 1] = p.r[3 * k + 2] = 0.0; break;
+      case 1: p.r[3 * k + 1] = NAN; break;
+      case 2: p.q1[6 * k] = -1.0; break;
+      case 3: p.q2[6 * k + 4] = INFINITY; break;
+      default:
+        for (int i = 0; i < 6; ++i) p.q1[6 * k + i] = 0.0;
+    }
+  }
+  for (int k = 0; k < kPairs; ++k)
+    p.ref[k] = pw85_overlap(&p.r[3 * k], &p.q1[6 * k], &p.q2[6 * k]);
+  return p;
+}
+
+template <int W>
+void check_width(Pairs const &p) {
+  // verdict of pair k in each lane position, -2 before any
+  std::vector<int> seen(kPairs, -2);
+  int good = 0, decided = 0;
+  for (int off = 0; off < W; ++off)
+    for (int k0 = off; k0 + W <= kPairs; k0 += W) {
+      double const *rp[W], *q1p[W], *q2p[W];
+      for (int l = 0; l < W; ++l) {
+        rp[l] = &p.r[3 * (k0 + l)];
+        q1p[l] = &p.q1[6 * (k0 + l)];
+        q2p[l] = &p.q2[6 * (k0 + l)];
+      }
+      int v[W];
+      pw85::overlap_lanes<W>(rp, q1p, q2p, v);
+      for (int l = 0; l < W; ++l) {
+        int const k = k0 + l;
+        g_assert_cmpint(v[l], >=, -1);
+        g_assert_cmpint(v[l], <=, 1);
+        if (v[l] >= 0) g_assert_cmpint(v[l], ==, p.ref[k]);
+        if (p.bad[k]) g_assert_cmpint(v[l], ==, -1);
+        if (seen[k] != -2) g_assert_cmpint(v[l], ==, seen[k]);
+        seen[k] = v[l];
+        if (off == 0 && !p.bad[k]) {
+          good++;
+          decided += v[l] >= 0;
+        }
+      }
+    }
+  g_assert_cmpint(good, >, kPairs / 2);
+  g_assert_cmpint(decided, >=, 0.95 * good);
+}
+
+void test_class(gconstpointer data) {
+  int const cls = *static_cast<int const *>(data);
+  Pairs const p = make_pairs(cls);
+  int n_overlap = 0, n_bad = 0;
+  for (int k = 0; k < kPairs; ++k) {
+    n_overlap += p.ref[k] == 1;
+    n_bad += p.ref[k] < 0;
+  }
+  // both verdicts common; the rejected arguments rejected (r12 = 0 is not)
+  g_assert_cmpint(n_overlap, >, kPairs / 5);
+  g_assert_cmpint(n_overlap, <, 4 * kPairs / 5);
+  g_assert_cmpint(n_bad, >, 0);
+  check_width<pw85::kOverlapLanes>(p);
+  check_width<pw85::kOverlapLanesV4>(p);
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  g_test_init(&argc, &argv, NULL);
+  int const w = pw85::overlap_lanes_width();
+  g_assert_true(w == pw85::kOverlapLanes || w == pw85::kOverlapLanesV4);
+  static int const classes[4] = {0, 1, 2, 3};
+  for (int c = 0; c < 4; ++c) {
+    char path[64];
+    g_snprintf(path, sizeof path, "/overlap_lanes/class-%d", c);
+    g_test_add_data_func(path, &classes[c], test_class);
+  }
+  return g_test_run();
+}
