@@ -83,14 +83,9 @@ struct CoefL {
   V8 c[8];
 };
 
-// rational_coefficients_dd for the eight pairs: lane k of its vectors (entry
-// k of the adjugates, storage order 00 01 02 11 12 22) is the vector of
-// entry k here; its three rounds of transposed sums become, per
-// coefficient, the same sums in the same tree: ((0 + 1) + (2 + 3)) + ((4 +
-// 5) + (6 + 7)), entries 6 and 7 being its zero padding lanes. Returns the
-// lanes where every coefficient passes its test.
 // The permutations of rational_coefficients_dd (ip, iq, is, it), and the
-// factors of w_k r_i r_j.
+// factors of w_k r_i r_j, per adjugate entry k (storage order 00 01 02 11
+// 12 22).
 constexpr int kIp[kSym] = {3, 2, 1, 0, 1, 0}, kIq[kSym] = {5, 4, 4, 5, 2, 3};
 constexpr int kIs[kSym] = {4, 1, 2, 2, 0, 1}, kIt[kSym] = {4, 5, 3, 2, 4, 1};
 constexpr int kRi[kSym] = {0, 0, 0, 1, 1, 2}, kRj[kSym] = {0, 1, 2, 1, 2, 2};
@@ -114,11 +109,18 @@ PW85_V4_INLINE void pair_sum(Vec3L<W> const &r, SymL<W> const &a, SymL<W> const 
   }
 }
 
+// rational_coefficients_dd for the eight pairs: lane k of its vectors
+// (entry k) is the vector of entry k here, and its three rounds of
+// transposed sums become, per coefficient, the same sums in the same tree,
+// ((0 + 1) + (2 + 3)) + ((4 + 5) + (6 + 7)), but for the last term: entries
+// 6 and 7 are its padding, +0 in both parts, and adding that +0 pair
+// changes nothing but the sign of a zero part; a nonzero sum is the same
+// bits without it, and a zero sum fails the test (sum > 0) in both.
+// Returns the lanes where every coefficient passes its test.
 PW85_V4_INLINE M8 coefficients(Vec3L<W> const &r, SymL<W> const &a, SymL<W> const &b,
                               CoefL &out) noexcept {
   using namespace rdd;
-  // Rounds 2 and 3, entry pair by entry pair (fewer live vectors than all
-  // the terms at once).
+  // Rounds 2 and 3, entry pair by entry pair.
   DD s0123[7], v[7];
   __m512d m0123[7], m[7];
   pair_sum(r, a, b, 0, s0123, m0123);
@@ -159,18 +161,14 @@ PW85_V4_INLINE V8 grid_start(Vec3L<W> const &r, SymL<W> const &q1, SymL<W> const
   __mmask8 const wanted = to_bits(want);
   __mmask8 found = static_cast<__mmask8>(~wanted), first = 0;
   V8 xa{};
-  for (int i0 = 0; i0 < 32 && found != 0xFF; i0 += 4) {
-    // Four points between the tests of found (measured: about 1 % faster
-    // per pair than a test after every point, bench_batch classes 0-3).
-    for (int i = i0; i < i0 + 4; ++i) {
-      __mmask8 const nonpos = static_cast<__mmask8>(
-          ~scan::positive_mask(scan::sextic(pn, bc(kScanCoarse[i]))) & ~found);
-      if (i == 0)
-        first = nonpos;
-      else
-        xa = _mm512_mask_blend_pd(nonpos, xa, bc(kScanCoarse[i - 1]));
-      found |= nonpos;
-    }
+  for (int i = 0; i < 32 && found != 0xFF; ++i) {
+    __mmask8 const nonpos = static_cast<__mmask8>(
+        ~scan::positive_mask(scan::sextic(pn, bc(kScanCoarse[i]))) & ~found);
+    if (i == 0)
+      first = nonpos;
+    else
+      xa = _mm512_mask_blend_pd(nonpos, xa, bc(kScanCoarse[i - 1]));
+    found |= nonpos;
   }
   __mmask8 const on_grid = found & wanted & static_cast<__mmask8>(~first);
   // Fine grid: x_j = xa exp(j h / 15), j = 0..15; the first non-positive j,
