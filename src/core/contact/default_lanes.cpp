@@ -1,8 +1,9 @@
 // PW85_METHOD_DEFAULT across pairs (docs/batch.md, "Throughput"): the
-// common path of default_body (default.cpp) for kDefaultLanes pairs at
-// once, pair l in lane l of each vector: the screen of the entry
-// (screen.hpp, screen_contact_pair), the start (M22) (start.hpp:
-// start_quartics, log_newton_iterate, newton_start), then the Halley
+// common path of default_body (default.cpp) for kLanes pairs at once (a
+// block of kDefaultLanes pairs in kDefaultLanes / kLanes vectors), pair l in
+// lane l of each vector: the screen of the entry (screen.hpp,
+// screen_contact_pair), the start (M22) (start_lanes.hpp: start_quartics;
+// start.hpp: log_newton_iterate, newton_start), then the Halley
 // iteration (M8) with adjugate evaluations (f_adj.hpp, eq. (M16)) until the
 // quartic model (M18) is accepted with the first-order error of step 1
 // (eqs. (M10), (M17)) or of the stationary form (M11) below kFastRel mu2.
