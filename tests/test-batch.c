@@ -740,13 +740,18 @@ static void test_overlap_lanes(gconstpointer data) {
  * matrix): every result and status bitwise equal, for the whole array on 1
  * and 2 threads and for arrays of m = 1 ... 9 pairs at every offset
  * 0 ... 47. Relative error against mu2_ref <= 1e-14 on every third pair
- * whose status is PW85_OK (r12 = 0 and the condition-1e15 pairs left out). */
+ * whose status is PW85_OK (r12 = 0, the condition-1e15 and the small-Q1
+ * pairs left out). */
 static void test_default_lanes(gconstpointer data) {
   int const cls = *(const int *)data;
   static lane_pairs s;
   static pw85_result exp[LP], out[LP];
   static int exp_st[LP], st[LP];
   make_lane_pairs(&s, cls, 91 + cls);
+  /* Q1 times 1e-10 in every 53rd pair: the maximiser lambda near 0, off
+   * the grid of the start (M24) on x86-64-v4 (its lanes then take (M22)). */
+  for (int k = 7; k < LP; k += 53)
+    for (int i = 0; i < 6; i++) s.q1[6 * k + i] *= 1e-10;
   s.r12[3 * 12 + 0] = NAN;
   s.q1[6 * 23 + 3] = -1.0;
   s.q2[6 * 35 + 4] = -INFINITY;
@@ -759,7 +764,7 @@ static void test_default_lanes(gconstpointer data) {
     if (exp_st[k] != PW85_OK && first == LP) first = k;
     if (exp_st[k] != PW85_OK) continue;
     n_ok++;
-    if (k % 3 == 0 && k % 61 != 9 && k % 97 != 3) {
+    if (k % 3 == 0 && k % 61 != 9 && k % 97 != 3 && k % 53 != 7) {
       double const ref = mu2_ref(s.r12 + 3 * k, s.q1 + 6 * k, s.q2 + 6 * k);
       max_err = fmax(max_err, rel_error(exp[k].mu2, ref));
     }

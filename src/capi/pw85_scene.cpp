@@ -331,13 +331,13 @@ void fill_nan_result(pw85_result *res, int method) noexcept {
 // DEFAULT for pairs k0 ... k0 + kDefaultLanes - 1 through the lanes of
 // default_lanes (docs/batch.md, "Throughput"): pair(k, buf, r12, q1, q2)
 // gives pair k's arguments (as for overlap_block; false: the pair fails with
-// PW85_ERR_INVALID_ARGUMENT); a lane that default_lanes does not accept is
+// PW85_ERR_INVALID_ARGUMENT); a lane that default_lanes leaves undecided is
 // computed by pw85_contact_function_method. Writes res[k] and st[k - k0] as
 // the one-pair loop would.
 template <class Pair>
 void default_block(long long k0, Pair pair, pw85_result *res, int st[]) noexcept {
   constexpr int w = pw85::kDefaultLanes;
-  static constexpr double kZero[6] = {0, 0, 0, 0, 0, 0};  // r = 0: never accepted by the lanes
+  static constexpr double kZero[6] = {0, 0, 0, 0, 0, 0};  // r = 0: never decided by the lanes
   double buf[w][3];
   double const *rp[w], *q1p[w], *q2p[w];
   bool ok[w];
@@ -346,20 +346,20 @@ void default_block(long long k0, Pair pair, pw85_result *res, int st[]) noexcept
     if (!ok[l]) rp[l] = q1p[l] = q2p[l] = kZero;
   }
   pw85::MethodResult mr[w];
-  bool acc[w];
-  pw85::default_lanes(rp, q1p, q2p, mr, acc);
+  int ls[w];
+  pw85::default_lanes(rp, q1p, q2p, mr, ls);
   for (int l = 0; l < w; ++l) {
     pw85_result &o = res[k0 + l];
     if (!ok[l]) {
       fill_nan_result(&o, PW85_METHOD_DEFAULT);
       st[l] = PW85_ERR_INVALID_ARGUMENT;
-    } else if (acc[l]) {
+    } else if (ls[l] != pw85::kLaneUndecided) {
       o.mu2 = mr[l].mu2;
       o.lambda = mr[l].lambda;
       o.mu2_error = mr[l].mu2_error;
       o.iterations = mr[l].iterations;
       o.method = mr[l].method;
-      st[l] = PW85_OK;
+      st[l] = ls[l];
     } else {
       st[l] = pw85_contact_function_method(rp[l], q1p[l], q2p[l], PW85_METHOD_DEFAULT, &o);
     }
@@ -560,7 +560,7 @@ int pw85_contact_function_pairs(long long m, double const *r12, double const *q1
   auto one = [&](long long k) noexcept {
     return pw85_contact_function_method(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k, method, res + k);
   };
-  if (method != PW85_METHOD_DEFAULT || !pw85::default_lanes_available())
+  if (method != PW85_METHOD_DEFAULT)
     return run_pairs(m, status, nthreads, 64, one);
   auto block = [&](long long k0, int st[]) noexcept {
     default_block(
@@ -620,7 +620,7 @@ int pw85_scene_contact_function(long long n, double const *centres, double const
     fill_nan_result(res + k, method);
     return int{PW85_ERR_INVALID_ARGUMENT};
   };
-  if (method != PW85_METHOD_DEFAULT || !pw85::default_lanes_available())
+  if (method != PW85_METHOD_DEFAULT)
     return scene(n, centres, q, b, m, pairs, status, nthreads, 64, one_r12);
   auto one = [&](long long k) noexcept {
     double r12[3];

@@ -102,19 +102,33 @@ Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
 Status contact_default_v4(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                           MethodResult &res) noexcept;
 #endif
+#if PW85_ISA_LEVELS
+// DEFAULT's general method alone on x86-64-v4 (default.cpp): what
+// contact_default_v4 returns for a pair whose rational step declines (for
+// rational_lanes.cpp, which has run that step); also sets res.method.
+Status contact_default_general_v4(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                  MethodResult &res) noexcept;
+#endif
 // DEFAULT for kDefaultLanes pairs at once, pair l = (r[l], q1[l], q2[l])
-// (default_lanes.cpp): the common path of contact_default in vector lanes.
-// accepted[l]: res[l] is what pw85_contact_function_method(..., DEFAULT,
-// ...) gives, bit for bit, with PW85_OK; otherwise res[l] is meaningless
-// and the caller makes the one-pair call. Any values are accepted (read
-// unchecked: 3 and 6 doubles at each pointer). Used only where
-// default_lanes_available() (not on x86-64-v4, where the one-pair DEFAULT
-// runs another algorithm first).
-constexpr int kDefaultLanes = 4;
-bool default_lanes_available() noexcept;
+// (docs/batch.md, "Throughput"): on x86-64-v4 the rational step in eight
+// lanes (rational_lanes.cpp), elsewhere the common path of contact_default
+// in two times four lanes (default_lanes.cpp). status[l] != kLaneUndecided:
+// res[l] and status[l] are what pw85_contact_function_method(..., DEFAULT,
+// ...) gives, bit for bit; kLaneUndecided: res[l] is meaningless and the
+// caller makes the one-pair call. Any values are accepted (read unchecked:
+// 3 and 6 doubles at each pointer).
+constexpr int kDefaultLanes = 8;
+constexpr int kLaneUndecided = 1;  // not a Status (status.hpp)
 void default_lanes(double const *const r[kDefaultLanes], double const *const q1[kDefaultLanes],
                    double const *const q2[kDefaultLanes], MethodResult res[kDefaultLanes],
-                   bool accepted[kDefaultLanes]) noexcept;
+                   int status[kDefaultLanes]) noexcept;
+#if PW85_ISA_LEVELS
+// default_lanes on x86-64-v4 (rational_lanes.cpp).
+void rational_lanes_v4(double const *const r[kDefaultLanes],
+                       double const *const q1[kDefaultLanes],
+                       double const *const q2[kDefaultLanes], MethodResult res[kDefaultLanes],
+                       int status[kDefaultLanes]) noexcept;
+#endif
 
 Status contact_newton(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                       MethodResult &res) noexcept;       // newton.cpp

@@ -39,13 +39,14 @@
 #include "eval/f_rational_dd.hpp"
 #include "common/isa.hpp"
 #include "contact/newton.hpp"
+#include "contact/rational_step.hpp"
 #include "contact/start_scan.hpp"
 
 namespace pw85 {
 
 namespace {
 using namespace default_params;
-constexpr int kAdjMaxIter = 30;
+constexpr int kAdjMaxIter = kHalleyMaxIter;
 // The stationary form is tried when the first-order relative error of the
 // double phi is below this (its second-order error is then below ~4e-16).
 constexpr double kMaxFirstOrderRel = 1e-8;
@@ -59,60 +60,6 @@ constexpr int kDDMaxBracket = 160;
 // DEFAULT's start, eq. (M22) (start.hpp).
 PW85_ALWAYS_INLINE double default_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
   return log_newton_start<kStartMin, kStartMax>(r, q1, q2, kStartTol);
-}
-
-// The parts shared by the two Halley iterations below (step 1 of
-// default_body, rational_iterate): E is an evaluation with f, df, d2f, d3f,
-// d4f at lambda.
-struct HalleyDecision {
-  double a, step, next;  // a = -f''; next = lambda + step
-  bool inside, tiny, near;
-};
-
-// Narrows [lo, hi] by the sign of f', takes the safeguarded Halley step (M8)
-// (Newton where Halley's denominator is not positive, bisection where f is
-// not concave), and decides whether lambda is near enough for the quartic
-// model (M18): f' small (gap f'^2 / 2a below kExtrapGap f) with the step
-// inside the bracket, or the step below rounding.
-template <class E>
-PW85_ALWAYS_INLINE HalleyDecision halley_decide(double lambda, E const &e, double &lo,
-                                                double &hi) noexcept {
-  if (e.df > 0.0)
-    lo = lambda;
-  else
-    hi = lambda;
-  double const a = -e.d2f;
-  double step;
-  double const den = 2.0 * e.d2f * e.d2f - e.df * e.d3f;
-  if (a > 0.0 && den > 0.0)
-    step = -2.0 * e.df * e.d2f / den;  // Halley, eq. (M8)
-  else if (a > 0.0)
-    step = e.df / a;
-  else
-    step = 0.5 * (lo + hi) - lambda;
-  double const next = lambda + step;
-  bool const inside = next > lo && next < hi;
-  bool const tiny = std::fabs(step) <= 2.0 * kU * lambda;
-  // One branch per decision (opaque, isa.hpp): without it GCC tests
-  // each comparison in turn, and their outcomes vary from pair to pair.
-  bool near = (a > 0.0) & (tiny | (inside & (e.df * e.df <= 2.0 * a * kExtrapGap * e.f)));
-  opaque(near);
-  return HalleyDecision{a, step, next, inside, tiny, near};
-}
-
-// Error of the quartic Taylor model (M18) at lambda with increment h: its
-// truncation estimated by the last term, counted twice, and the error edf
-// of f' (how well the maximiser is known, eq. (M10)).
-PW85_ALWAYS_INLINE double model_error(double edf, double h, double a, double d4f) noexcept {
-  double const h2 = h * h;
-  double const trunc = std::fabs(d4f * h2 * h2) * kInv24;
-  return edf * std::fabs(h) + edf * edf / (2.0 * a) + 2.0 * trunc;
-}
-
-// The model's increment f(lambda + h) - f(lambda).
-template <class E>
-PW85_ALWAYS_INLINE double model_increment(double h, E const &e) noexcept {
-  return h * (e.df + h * (0.5 * e.d2f + h * (e.d3f * kInv6 + h * e.d4f * kInv24)));
 }
 
 // A double-double evaluation (f_dd.hpp) with bounds on the errors of f and
@@ -245,7 +192,7 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
       ++res.iterations;
       if (!f_eval_adj(lambda, r, q1, q2, d, e)) break;
       start = lambda;
-      HalleyDecision const hd = halley_decide(lambda, e, lo, hi);
+      HalleyDecision<double> const hd = halley_decide(lambda, e, lo, hi);
       double const a = hd.a, step = hd.step, next = hd.next;
       bool const inside = hd.inside, tiny = hd.tiny;
       if (hd.near) {
@@ -405,19 +352,14 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
 }
 
 #if PW85_ISA_LEVELS
-// Relative error of f from f_eval_rational (f_rational_dd.hpp): 2.2 u from
-// the coefficients, about 13 u from the evaluation of A / B and s t.
-constexpr double kRationalRel = 16.0 * kU;
-
 // The rational step (docs/methods.md, "PW85_METHOD_DEFAULT"): from the
 // start (M24) (or (M22) where (M24) finds no bracket), Halley steps (M8)
 // on f evaluated from the seven
 // double-double coefficients (f_rational_dd.hpp), whose error does not grow
 // with the conditioning of Q(lambda), until the quartic Taylor model (M18)
-// at the current lambda is accurate: then mu2 = f + the model's increment,
-// with error kRationalRel f (plus one rounding) and the error of the model
-// and of lambda (M10). False (the caller then runs the general method) when
-// an evaluation fails or the iteration does not settle.
+// at the current lambda is accurate (rational_decide, rational_step.hpp).
+// False (the caller then runs the general method) when an evaluation fails
+// or the iteration does not settle.
 PW85_ALWAYS_INLINE bool rational_iterate(RationalDD const &k, double lambda0,
                                          MethodResult &res) noexcept {
   double lo = 0.0, hi = 1.0, lambda = lambda0;
@@ -426,23 +368,15 @@ PW85_ALWAYS_INLINE bool rational_iterate(RationalDD const &k, double lambda0,
   for (int it = 0; it < kAdjMaxIter; ++it) {
     ++res.iterations;
     if (!f_eval_rational(lambda, k, e)) return false;
-    HalleyDecision const hd = halley_decide(lambda, e, lo, hi);
-    if (hd.near) {
-      // As in step 1 of default_body, with the error edf of the rational f'.
-      double const h = hd.tiny ? 0.0 : hd.step;
-      double const err = (kRationalRel + kU) * e.f + model_error(e.edf, h, hd.a, e.d4f);
-      bool done = err <= kFastRel * e.f;
-      opaque(done);
-      if (done) {
-        double const corr = model_increment(h, e);
-        res.mu2 = e.f + corr;
-        res.lambda = lambda + h;
-        res.mu2_error = err;
-        return true;
-      }
+    RationalDecision<double> const d = rational_decide(lambda, e, lo, hi);
+    if (d.done) {
+      res.mu2 = d.mu2;
+      res.lambda = d.lam;
+      res.mu2_error = d.err;
+      return true;
     }
-    if (hd.tiny) return false;
-    lambda = hd.inside ? hd.next : 0.5 * (lo + hi);
+    if (d.tiny) return false;
+    lambda = d.next;
   }
   return false;
 }
@@ -484,6 +418,12 @@ PW85_TARGET_V4 Status contact_default_v4(Vec3 const &r, Sym3 const &q1, Sym3 con
                                          MethodResult &res) noexcept {
   res.method = kMethodDefault;
   if (rational_v4(r, q1, q2, res)) return kOk;
+  return default_body_v4(r, q1, q2, res);
+}
+
+PW85_TARGET_V4 Status contact_default_general_v4(Vec3 const &r, Sym3 const &q1,
+                                                 Sym3 const &q2, MethodResult &res) noexcept {
+  res.method = kMethodDefault;
   return default_body_v4(r, q1, q2, res);
 }
 #endif

@@ -1,8 +1,9 @@
 // PW85_METHOD_DEFAULT across pairs (docs/batch.md, "Throughput"): the
-// common path of default_body (default.cpp) for kDefaultLanes pairs at
-// once, pair l in lane l of each vector: the screen of the entry
-// (screen.hpp, screen_contact_pair), the start (M22) (start.hpp:
-// start_quartics, log_newton_iterate, newton_start), then the Halley
+// common path of default_body (default.cpp) for kLanes pairs at once (a
+// block of kDefaultLanes pairs in kDefaultLanes / kLanes vectors), pair l in
+// lane l of each vector: the screen of the entry (screen.hpp,
+// screen_contact_pair), the start (M22) (start_lanes.hpp: start_quartics;
+// start.hpp: log_newton_iterate, newton_start), then the Halley
 // iteration (M8) with adjugate evaluations (f_adj.hpp, eq. (M16)) until the
 // quartic model (M18) is accepted with the first-order error of step 1
 // (eqs. (M10), (M17)) or of the stationary form (M11) below kFastRel mu2.
@@ -11,7 +12,10 @@
 // compiled without contraction, src/meson.build, so each lane's IEEE
 // operations are those of the one-pair call), so an accepted lane carries
 // the bits of pw85_contact_function_method; the others (screen failed, a
-// failed evaluation, step 2 needed, more than kLaneMaxIter steps) are returned undecided for the caller's one-pair call.
+// failed evaluation, step 2 needed, more than kLaneMaxIter steps) are
+// returned undecided for the caller's one-pair call. On x86-64-v4, where the
+// one-pair DEFAULT runs the rational step first, default_lanes runs the
+// lanes of rational_lanes.cpp instead.
 #include <cmath>
 
 #include "common/fp.hpp"
@@ -20,7 +24,9 @@
 #include "common/screen.hpp"
 #include "contact/contact.hpp"
 #include "contact/default_params.hpp"
+#include "contact/rational_step.hpp"
 #include "contact/start.hpp"
+#include "contact/start_lanes.hpp"
 #include "eval/f_dd.hpp"
 
 namespace pw85 {
@@ -28,8 +34,8 @@ namespace pw85 {
 namespace {
 
 using namespace lanes;
-constexpr int W = kDefaultLanes;
-static_assert(W == kLanes, "one vector per kDefaultLanes pairs");
+constexpr int W = kLanes;
+static_assert(kDefaultLanes % W == 0, "kDefaultLanes / W vectors per block");
 
 using namespace default_params;
 constexpr double kClamp = kLogNewtonClamp;
@@ -37,94 +43,17 @@ constexpr double kClamp = kLogNewtonClamp;
 // one-pair call (which repeats them: same bits).
 constexpr int kLaneMaxIter = 8;
 
-// Sym3 and Vec3 of lanes, and the sym3.hpp algebra in the same operation
-// order.
-struct S {
-  V a[kSym];
-  PW85_ALWAYS_INLINE V &operator[](int i) noexcept { return a[i]; }
-  PW85_ALWAYS_INLINE V const &operator[](int i) const noexcept { return a[i]; }
-};
-struct T {
-  V x[kDim];
-  PW85_ALWAYS_INLINE V &operator[](int i) noexcept { return x[i]; }
-  PW85_ALWAYS_INLINE V const &operator[](int i) const noexcept { return x[i]; }
-};
+typedef SymL<W> S;
+typedef Vec3L<W> T;
 
-PW85_ALWAYS_INLINE V dot(T const &u, T const &v) noexcept {
-  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-}
-PW85_ALWAYS_INLINE T multiply(S const &a, T const &x) noexcept {
-  return T{{a[0] * x[0] + a[1] * x[1] + a[2] * x[2], a[1] * x[0] + a[3] * x[1] + a[4] * x[2],
-            a[2] * x[0] + a[4] * x[1] + a[5] * x[2]}};
-}
-PW85_ALWAYS_INLINE S adjugate3(S const &q) noexcept {
-  return S{{q[3] * q[5] - q[4] * q[4], q[2] * q[4] - q[1] * q[5], q[1] * q[4] - q[2] * q[3],
-            q[0] * q[5] - q[2] * q[2], q[1] * q[2] - q[0] * q[4], q[0] * q[3] - q[1] * q[1]}};
-}
-PW85_ALWAYS_INLINE V det_with_adjugate(S const &q, S const &c) noexcept {
-  return q[0] * c[0] + q[1] * c[1] + q[2] * c[2];
-}
-PW85_ALWAYS_INLINE S interpolate(S const &q1, S const &q2, V lambda) noexcept {
-  S q;
-  V const one_minus = 1.0 - lambda;
-  for (int i = 0; i < kSym; ++i) q[i] = one_minus * q1[i] + lambda * q2[i];
-  return q;
-}
-
-// start.hpp: detail::support_squares, detail::tree_times, newton_start,
-// start_quartics<true>, log_newton_iterate<kStartMin, kStartMax>.
-PW85_ALWAYS_INLINE void support_squares(T const &n, S const &q1, S const &q2, V &a1,
-                                        V &a2) noexcept {
-  V const n00 = n[0] * n[0], n11 = n[1] * n[1], n22 = n[2] * n[2];
-  V const n01 = 2.0 * n[0] * n[1], n02 = 2.0 * n[0] * n[2], n12 = 2.0 * n[1] * n[2];
-  a1 = (q1[0] * n00 + q1[3] * n11) + (q1[5] * n22 + q1[1] * n01) + (q1[2] * n02 + q1[4] * n12);
-  a2 = (q2[0] * n00 + q2[3] * n11) + (q2[5] * n22 + q2[1] * n01) + (q2[2] * n02 + q2[4] * n12);
-}
-
-PW85_ALWAYS_INLINE T tree_times(S const &c, T const &r) noexcept {
-  return T{{c[0] * r[0] + (c[1] * r[1] + c[2] * r[2]), c[1] * r[0] + (c[3] * r[1] + c[4] * r[2]),
-            c[2] * r[0] + (c[4] * r[1] + c[5] * r[2])}};
-}
-
-PW85_ALWAYS_INLINE V newton_start(T const &r, S const &q1, S const &q2) noexcept {
-  V const h1 = vsqrt(dot(r, multiply(q1, r)));
-  V const h2 = vsqrt(dot(r, multiply(q2, r)));
-  V const l0 = h1 / (h1 + h2);
-  return select((l0 > 0.0) & (l0 < 1.0), l0, V{} + 0.5);
-}
-
+// DEFAULT's start (M22) (start.hpp: start_quartics<true>,
+// log_newton_iterate<kStartMin, kStartMax>, newton_start).
 PW85_ALWAYS_INLINE V default_start(T const &r, S const &q1, S const &q2) noexcept {
-  // start_quartics<true>
-  S q12;
-  for (int i = 0; i < kSym; ++i) q12[i] = q1[i] + q2[i];
-  S const c1 = adjugate3(q1), c2 = adjugate3(q2);
-  T const n12 = tree_times(adjugate3(q12), r);
-  T const n1 = tree_times(c1, r), n2 = tree_times(c2, r);
-  T m;
-  for (int i = 0; i < kDim; ++i) m[i] = n12[i] - (n1[i] + n2[i]);
-  V s1, s2;
-  support_squares(n12, q1, q2, s1, s2);
-  V const x0 = vsqrt(s1 / s2);
-  V const sc = 1.0 / (s1 + s2);
-  V const det1 = det_with_adjugate(q1, c1) * sc;
-  V const det2 = det_with_adjugate(q2, c2) * sc;
-  V const t1 = ((c1[0] * q2[0] + c1[3] * q2[3]) + c1[5] * q2[5] +
-                2.0 * ((c1[1] * q2[1] + c1[2] * q2[2]) + c1[4] * q2[4])) * sc;
-  V const t2 = ((q1[0] * c2[0] + q1[3] * c2[3]) + q1[5] * c2[5] +
-                2.0 * ((q1[1] * c2[1] + q1[2] * c2[2]) + q1[4] * c2[4])) * sc;
-  V const rn1 = dot(r, n1), rm = dot(r, m), rn2 = dot(r, n2);
-  T const p = multiply(q2, n1), q = multiply(q1, n2);
-  V const mp = dot(m, p) * sc, mq = dot(m, q) * sc;
-  V const a10 = det1 * rn1;
-  V const a11 = 2.0 * det1 * rm;
-  V const a12 = (t1 * rm - mp) + 2.0 * det1 * rn2;
-  V const a13 = 2.0 * mq;
-  V const a14 = dot(n2, q) * sc;
-  V const a24 = det2 * rn2;
-  V const a23 = 2.0 * det2 * rm;
-  V const a22 = (t2 * rm - mq) + 2.0 * det2 * rn1;
-  V const a21 = 2.0 * mp;
-  V const a20 = dot(n1, p) * sc;
+  StartQuarticsL<W> sq;
+  start_quartics<true>(r, q1, q2, sq);
+  V const a10 = sq.a1[0], a11 = sq.a1[1], a12 = sq.a1[2], a13 = sq.a1[3], a14 = sq.a1[4];
+  V const a20 = sq.a2[0], a21 = sq.a2[1], a22 = sq.a2[2], a23 = sq.a2[3], a24 = sq.a2[4];
+  V const x0 = sq.x0;
   // log_newton_iterate<kStartMin, kStartMax>
   V x = x0;
   V const b12 = 2.0 * a12, b13 = 3.0 * a13, b14 = 4.0 * a14;
@@ -251,19 +180,10 @@ PW85_ALWAYS_INLINE void lanes_body(double const *const rp[W], double const *cons
     for (int it = 0; it < kLaneMaxIter && any(active); ++it) {
       iters -= active;  // + 1 in the active lanes
       active &= f_eval_adj(lambda, r, q1, q2, d, e);
-      // halley_decide (default.cpp)
-      M const up = e.df > 0.0;
-      lo = select(up, lambda, lo);
-      hi = select(up, hi, lambda);
-      V const a = -e.d2f;
-      V const den = 2.0 * e.d2f * e.d2f - e.df * e.d3f;
-      M const apos = a > 0.0;
-      V const step = select(apos & (den > 0.0), -2.0 * e.df * e.d2f / den,
-                            select(apos, e.df / a, 0.5 * (lo + hi) - lambda));
-      V const next = lambda + step;
-      M const inside = (next > lo) & (next < hi);
-      M const tiny = vabs(step) <= 2.0 * kU * lambda;
-      M const near = active & apos & (tiny | (inside & (e.df * e.df <= 2.0 * a * kExtrapGap * e.f)));
+      HalleyDecision<V> const hd = halley_decide(lambda, e, lo, hi);
+      V const a = hd.a, step = hd.step, next = hd.next;
+      M const inside = hd.inside, tiny = hd.tiny;
+      M const near = active & hd.near;
       if (any(near)) {
         M fast_or_stat;
         // Step 1 of default_body at a lambda near enough for the model.
@@ -276,15 +196,10 @@ PW85_ALWAYS_INLINE void lanes_body(double const *const rp[W], double const *cons
         V const edf = p1 * dot(ar, Er) + 2.0 * p * dot(as, multiply(da, Er)) +
                       4.0 * kU * (p1 * e.phi + p * vabs(e.dphi));
         V const h = select(tiny, V{}, step);
-        // model_error
-        V const h2 = h * h;
-        V const trunc = vabs(e.d4f * h2 * h2) * kInv24;
-        V const err_l = edf * vabs(h) + edf * edf / (2.0 * a) + 2.0 * trunc;
+        V const err_l = model_error(edf, h, a, e.d4f);
         M const done =
             near & ((err_l <= kExtrapBudget * e.f) | (vabs(e.df) <= 2.0 * edf) | tiny);
-        // model_increment
-        V const corr =
-            h * (e.df + h * (0.5 * e.d2f + h * (e.d3f * kInv6 + h * e.d4f * kInv24)));
+        V const corr = model_increment(h, e);
         V const err1 = p * (dot(ar, Er) + 3.0 * kU * dot(ar, as)) + 4.0 * kU * e.f + err_l;
         M const fast = done & (err1 <= kFastRel * e.f);
         V m = e.f + corr, em = err1;
@@ -348,23 +263,25 @@ PW85_TARGET_V3 void lanes_v3(double const *const rp[W], double const *const q1p[
 
 }  // namespace
 
-bool default_lanes_available() noexcept {
-#if PW85_ISA_LEVELS
-  // On x86-64-v4 the one-pair DEFAULT runs the rational step first
-  // (default.cpp), whose bits these lanes do not reproduce.
-  return !isa::has_v4();
-#else
-  return true;
-#endif
-}
-
 void default_lanes(double const *const r[kDefaultLanes], double const *const q1[kDefaultLanes],
                    double const *const q2[kDefaultLanes], MethodResult res[kDefaultLanes],
-                   bool accepted[kDefaultLanes]) noexcept {
+                   int status[kDefaultLanes]) noexcept {
 #if PW85_ISA_LEVELS
-  if (isa::has_v3()) return lanes_v3(r, q1, q2, res, accepted);
+  // On x86-64-v4 the one-pair DEFAULT runs the rational step first
+  // (default.cpp): its lanes are those of rational_lanes.cpp.
+  if (isa::has_v4()) return rational_lanes_v4(r, q1, q2, res, status);
 #endif
-  lanes_body(r, q1, q2, res, accepted);
+  bool accepted[kDefaultLanes];
+  for (int b = 0; b < kDefaultLanes; b += W) {
+#if PW85_ISA_LEVELS
+    if (isa::has_v3()) {
+      lanes_v3(r + b, q1 + b, q2 + b, res + b, accepted + b);
+      continue;
+    }
+#endif
+    lanes_body(r + b, q1 + b, q2 + b, res + b, accepted + b);
+  }
+  for (int l = 0; l < kDefaultLanes; ++l) status[l] = accepted[l] ? kOk : kLaneUndecided;
 }
 
 }  // namespace pw85

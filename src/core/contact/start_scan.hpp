@@ -34,13 +34,15 @@ namespace scan {
 
 PW85_V4_INLINE __m512d bc(double v) { return _mm512_set1_pd(v); }
 
-// The sextic sum_n c_n x^n at the eight lanes of x (Estrin's scheme: four
-// levels of FMA after x).
-PW85_V4_INLINE __m512d sextic(double const c[7], __m512d x) {
+// The sextic sum_n c_n x^n, lane by lane (Estrin's scheme: four levels of
+// FMA after x): at eight points x for one pair (the c_n broadcast,
+// scan_start), or at one point x (broadcast) for one pair per lane
+// (contact/rational_lanes.cpp), the same IEEE operations in each lane.
+PW85_V4_INLINE __m512d sextic(__m512d const c[7], __m512d x) {
   __m512d const x2 = _mm512_mul_pd(x, x), x4 = _mm512_mul_pd(x2, x2);
-  __m512d const lo = _mm512_fmadd_pd(x2, _mm512_fmadd_pd(x, bc(c[3]), bc(c[2])),
-                                     _mm512_fmadd_pd(x, bc(c[1]), bc(c[0])));
-  __m512d const hi = _mm512_fmadd_pd(x2, bc(c[6]), _mm512_fmadd_pd(x, bc(c[5]), bc(c[4])));
+  __m512d const lo = _mm512_fmadd_pd(x2, _mm512_fmadd_pd(x, c[3], c[2]),
+                                     _mm512_fmadd_pd(x, c[1], c[0]));
+  __m512d const hi = _mm512_fmadd_pd(x2, c[6], _mm512_fmadd_pd(x, c[5], c[4]));
   return _mm512_fmadd_pd(x4, hi, lo);
 }
 
@@ -87,17 +89,57 @@ alignas(64) constexpr double kScanFine[16] = {
     1.82211880039050889e+00, 1.91554082901389622e+00, 2.01375270747047663e+00,
     2.11700001661267478e+00};
 
+// The sextics a1 - x^2 a2 (pn) and a1 + x^2 a2 (pdn) from the quartics of
+// (M22) (start.hpp, start_quartics<false>), for one pair (T = double) or one
+// pair per lane.
+template <class T, class Q>
+PW85_ALWAYS_INLINE void scan_sextics(Q const &sq, T pn[7], T pdn[7]) noexcept {
+  pn[0] = sq.a1[0];
+  pn[1] = sq.a1[1];
+  pn[2] = sq.a1[2] - sq.a2[0];
+  pn[3] = sq.a1[3] - sq.a2[1];
+  pn[4] = sq.a1[4] - sq.a2[2];
+  pn[5] = -sq.a2[3];
+  pn[6] = -sq.a2[4];
+  pdn[0] = sq.a1[0];
+  pdn[1] = sq.a1[1];
+  pdn[2] = sq.a1[2] + sq.a2[0];
+  pdn[3] = sq.a1[3] + sq.a2[1];
+  pdn[4] = sq.a1[4] + sq.a2[2];
+  pdn[5] = sq.a2[3];
+  pdn[6] = sq.a2[4];
+}
+
+// Step 3: lambda from the values n1, n2 of a1 - x^2 a2 and e1, e2 of
+// a1 + x^2 a2 at the fine points x1 and x1 exp(h / 15) that bracket the
+// root (y = n / e). Linear interpolation in t: x = x1 exp(v), v = (h / 15)
+// w, w = y1 / (y1 - y2) in [0, 1]; exp(v) by its [2/2] Pade form (relative
+// error below v^5 / 720 < 5e-10), written in y1 and y1 - y2 so that lambda
+// = x / (1 + x) takes one division. One pair (T = double) or one pair per
+// lane.
+template <class T>
+PW85_ALWAYS_INLINE T scan_interpolate(T n1, T e1, T n2, T e2, T x1) noexcept {
+  T const y1 = n1 / e1, y2 = n2 / e2;
+  T const a = y1 * (kScanStep / 15.0), b = y1 - y2;
+  T const b2 = 12.0 * (b * b), ab = 6.0 * (a * b), aa = a * a;
+  T const en = (b2 + aa) + ab, ed = (b2 + aa) - ab;
+  T const xn = x1 * en;
+  return xn / (ed + xn);
+}
+
 // Returns lambda, or -1 when the root is outside the coarse grid (or the
 // interpolated lambda is not in (0, 1)).
 PW85_V4_INLINE double scan_start(
     Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
   StartQuartics sq;
   start_quartics<false>(r, q1, q2, sq);
-  // a1 - x^2 a2 and a1 + x^2 a2 as sextics.
-  double const pn[7] = {sq.a1[0], sq.a1[1], sq.a1[2] - sq.a2[0], sq.a1[3] - sq.a2[1],
-                        sq.a1[4] - sq.a2[2], -sq.a2[3], -sq.a2[4]};
-  double const pdn[7] = {sq.a1[0], sq.a1[1], sq.a1[2] + sq.a2[0], sq.a1[3] + sq.a2[1],
-                         sq.a1[4] + sq.a2[2], sq.a2[3], sq.a2[4]};
+  double pn_s[7], pdn_s[7];
+  scan_sextics(sq, pn_s, pdn_s);
+  __m512d pn[7], pdn[7];
+  for (int i = 0; i < 7; ++i) {
+    pn[i] = scan::bc(pn_s[i]);
+    pdn[i] = scan::bc(pdn_s[i]);
+  }
   __m512d c_num[4];
   for (int v = 0; v < 4; ++v) c_num[v] = scan::sextic(pn, _mm512_load_pd(kScanCoarse + 8 * v));
   unsigned const k = scan::first_nonpositive(c_num[0], c_num[1], c_num[2], c_num[3]);
@@ -119,17 +161,7 @@ PW85_V4_INLINE double scan_start(
   double const e1 = _mm512_cvtsd_f64(_mm512_permutex2var_pd(f_den[0], i1, f_den[1]));
   double const n2 = _mm512_cvtsd_f64(_mm512_permutex2var_pd(f_num[0], i2, f_num[1]));
   double const e2 = _mm512_cvtsd_f64(_mm512_permutex2var_pd(f_den[0], i2, f_den[1]));
-  double const x1 = xa * kScanFine[j - 1];
-  double const y1 = n1 / e1, y2 = n2 / e2;
-  // Linear interpolation in t: x = x1 exp(v), v = (h / 15) w, w = y1 / (y1 -
-  // y2) in [0, 1]; exp(v) by its [2/2] Pade form (relative error below
-  // v^5 / 720 < 5e-10), written in y1 and y1 - y2 so that lambda = x / (1 +
-  // x) takes one division.
-  double const a = y1 * (kScanStep / 15.0), b = y1 - y2;
-  double const b2 = 12.0 * (b * b), ab = 6.0 * (a * b), aa = a * a;
-  double const en = (b2 + aa) + ab, ed = (b2 + aa) - ab;
-  double const xn = x1 * en;
-  double const l = xn / (ed + xn);
+  double const l = scan_interpolate(n1, e1, n2, e2, xa * kScanFine[j - 1]);
   return l > 0.0 && l < 1.0 ? l : -1.0;
 }
 

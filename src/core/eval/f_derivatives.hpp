@@ -7,16 +7,19 @@
 // fourth derivative, docs/methods.md eq. (M18)) evaluations.
 #pragma once
 
+#include "common/isa.hpp"
 #include "common/sym3.hpp"
 
 namespace pw85 {
 
 // f = p phi and its first three derivatives from phi, phi', phi'', phi'''.
-template <class Eval>
-inline void set_f_from_phi(double lambda, double phi, double phi1, double phi2, double phi3,
-                           Eval &e) noexcept {
-  double const p = lambda * (1.0 - lambda);
-  double const p1 = 1.0 - 2.0 * lambda;
+// For one pair (T = double) or one pair per vector lane (T a vector type,
+// contact/rational_lanes.cpp).
+template <class T, class Eval>
+PW85_ALWAYS_INLINE void set_f_from_phi(T lambda, T phi, T phi1, T phi2, T phi3,
+                                       Eval &e) noexcept {
+  T const p = lambda * (1.0 - lambda);
+  T const p1 = 1.0 - 2.0 * lambda;
   e.phi = phi;
   e.dphi = phi1;
   e.f = p * phi;

@@ -22,6 +22,7 @@
 #include "common/fp.hpp"
 #include "eval/f_derivatives.hpp"
 #include "common/isa.hpp"
+#include "common/lanes.hpp"
 #include "common/sym3.hpp"
 
 #if PW85_ISA_LEVELS
@@ -99,6 +100,68 @@ PW85_V4_INLINE __m512d fold_abs(__m512d x, __m512d y, __m512i ia, __m512i ib) {
   return _mm512_add_pd(_mm512_permutex2var_pd(x, ia, y), _mm512_permutex2var_pd(x, ib, y));
 }
 
+// The terms of the seven contractions (eqs. (M12)-(M13)) for adjugate
+// entries C_k = P_k Q_k - S_k T_k: pa, qa, sa, ta the factors P, Q, S, T from
+// Q1, pb ... tb from Q2, aw = w_k Q1_k, bw = w_k Q2_k, ri rj = w_k r_i r_j
+// (w_k = 1 on the diagonal, 2 off it). Lane by lane: in
+// rational_coefficients_dd lane k holds entry k of one pair; in
+// contact/rational_lanes.cpp the vectors of one entry k hold one pair per
+// lane, and each lane performs the same IEEE operations, so the terms of a
+// pair are the same bits in both. v[j] = the term of coefficient j
+// (a0, a1, a2, 3 d0, d1, d2, 3 d3; products in double-double), m[j] = the
+// sum of the absolute values of its parts (for the error bound).
+struct Terms {
+  DD v[7];
+  __m512d m[7];
+};
+
+PW85_V4_INLINE void terms(__m512d pa, __m512d qa, __m512d sa, __m512d ta, __m512d pb,
+                          __m512d qb, __m512d sb, __m512d tb, __m512d aw, __m512d bw,
+                          __m512d ri, __m512d rj, Terms &out) {
+  DD const paqa = two_prod(pa, qa), sata = two_prod(sa, ta);
+  DD const pbqb = two_prod(pb, qb), sbtb = two_prod(sb, tb);
+  DD const paqb = two_prod(pa, qb), pbqa = two_prod(pb, qa);
+  DD const satb = two_prod(sa, tb), sbta = two_prod(sb, ta);
+  DD const c1 = sub(paqa, sata), c2 = sub(pbqb, sbtb);
+  // Mixed adjugate: the polarisation of P Q - S T.
+  DD const cm = sub(add(paqb, pbqa), add(satb, sbta));
+  // w_k r_i r_j, exactly as a pair.
+  DD const rr = two_prod(ri, rj);
+  out.v[0] = mul_dd(c1, rr);
+  out.v[1] = mul_dd(cm, rr);
+  out.v[2] = mul_dd(c2, rr);
+  out.v[3] = mul_d(c1, aw);
+  out.v[4] = mul_d(c1, bw);
+  out.v[5] = mul_d(c2, aw);
+  out.v[6] = mul_d(c2, bw);
+  __m512d const ac1 = _mm512_add_pd(vabs(paqa.h), vabs(sata.h));
+  __m512d const ac2 = _mm512_add_pd(vabs(pbqb.h), vabs(sbtb.h));
+  __m512d const acm = _mm512_add_pd(_mm512_add_pd(vabs(paqb.h), vabs(pbqa.h)),
+                                    _mm512_add_pd(vabs(satb.h), vabs(sbta.h)));
+  __m512d const arr = vabs(rr.h), va = vabs(aw), vb = vabs(bw);
+  out.m[0] = _mm512_mul_pd(ac1, arr);
+  out.m[1] = _mm512_mul_pd(acm, arr);
+  out.m[2] = _mm512_mul_pd(ac2, arr);
+  out.m[3] = _mm512_mul_pd(ac1, va);
+  out.m[4] = _mm512_mul_pd(ac1, vb);
+  out.m[5] = _mm512_mul_pd(ac2, va);
+  out.m[6] = _mm512_mul_pd(ac2, vb);
+}
+
+constexpr double kThird = 1.0 / 3.0;
+
+// A coefficient from its sum over the adjugate entries t (double-double)
+// and the sum mt of the absolute values of its terms: (t.h + t.l) times
+// ts (the scale, times 1/3 for d0 and d3). ok: 32 u^2 mt <= 2^-56 (the sum),
+// and the sum > 0.
+PW85_V4_INLINE __m512d finish(DD t, __m512d mt, __m512d ts, __mmask8 &ok) {
+  __m512d const sum = _mm512_add_pd(t.h, t.l);
+  __m512d const bound = _mm512_mul_pd(mt, _mm512_set1_pd(32.0 * 0x1p-106 * 0x1p56));
+  ok = _mm512_cmp_pd_mask(bound, sum, _CMP_LE_OQ) &
+       _mm512_cmp_pd_mask(sum, _mm512_setzero_pd(), _CMP_GT_OQ);
+  return _mm512_mul_pd(sum, ts);
+}
+
 }  // namespace rdd
 
 // Computes the seven coefficients, times out.scale, into out.c[0..6]
@@ -133,25 +196,14 @@ PW85_V4_INLINE bool rational_coefficients_dd(
   __m512i const it = _mm512_setr_epi64(4, 5, 3, 2, 4, 1, 6, 6);
   __m512d const pa = perm(a, ip), qa = perm(a, iq), sa = perm(a, is), ta = perm(a, it);
   __m512d const pb = perm(b, ip), qb = perm(b, iq), sb = perm(b, is), tb = perm(b, it);
-  DD const paqa = two_prod(pa, qa), sata = two_prod(sa, ta);
-  DD const pbqb = two_prod(pb, qb), sbtb = two_prod(sb, tb);
-  DD const paqb = two_prod(pa, qb), pbqa = two_prod(pb, qa);
-  DD const satb = two_prod(sa, tb), sbta = two_prod(sb, ta);
-  DD const c1 = sub(paqa, sata), c2 = sub(pbqb, sbtb);
-  // Mixed adjugate: the polarisation of P Q - S T.
-  DD const cm = sub(add(paqb, pbqa), add(satb, sbta));
   // Weights of the symmetric contraction sum_ij C_ij X_ij: 1 on the
   // diagonal, 2 off it, 0 in the padding lanes.
   __m512d const w = _mm512_setr_pd(1.0, 2.0, 2.0, 1.0, 2.0, 1.0, 0.0, 0.0);
-  __m512d const aw = _mm512_mul_pd(a, w), bw = _mm512_mul_pd(b, w);
-  // w_k r_i r_j, exactly as a pair.
-  __m512d const ri = _mm512_mul_pd(perm(rv, _mm512_setr_epi64(0, 0, 0, 1, 1, 2, 3, 3)), w);
-  __m512d const rj = perm(rv, _mm512_setr_epi64(0, 1, 2, 1, 2, 2, 3, 3));
-  DD const rr = two_prod(ri, rj);
-  // The seven contractions, lane-wise products before the sums over k.
-  DD v[8] = {mul_dd(c1, rr),  mul_dd(cm, rr),  mul_dd(c2, rr),  mul_d(c1, aw),
-             mul_d(c1, bw),   mul_d(c2, aw),   mul_d(c2, bw),
-             DD{_mm512_setzero_pd(), _mm512_setzero_pd()}};
+  Terms v;
+  terms(pa, qa, sa, ta, pb, qb, sb, tb, _mm512_mul_pd(a, w), _mm512_mul_pd(b, w),
+        _mm512_mul_pd(perm(rv, _mm512_setr_epi64(0, 0, 0, 1, 1, 2, 3, 3)), w),
+        perm(rv, _mm512_setr_epi64(0, 1, 2, 1, 2, 2, 3, 3)), v);
+  DD const zero{_mm512_setzero_pd(), _mm512_setzero_pd()};
   // Transposed reduction: three rounds turn the eight vectors into one
   // whose lane j is the sum of the lanes of v[j].
   __m512i const i1a = _mm512_setr_epi64(0, 8, 2, 10, 4, 12, 6, 14);
@@ -160,30 +212,19 @@ PW85_V4_INLINE bool rational_coefficients_dd(
   __m512i const i2b = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
   __m512i const i3a = _mm512_setr_epi64(0, 1, 2, 3, 8, 9, 10, 11);
   __m512i const i3b = _mm512_setr_epi64(4, 5, 6, 7, 12, 13, 14, 15);
-  DD const w01 = fold(v[0], v[1], i1a, i1b), w23 = fold(v[2], v[3], i1a, i1b);
-  DD const w45 = fold(v[4], v[5], i1a, i1b), w67 = fold(v[6], v[7], i1a, i1b);
+  DD const w01 = fold(v.v[0], v.v[1], i1a, i1b), w23 = fold(v.v[2], v.v[3], i1a, i1b);
+  DD const w45 = fold(v.v[4], v.v[5], i1a, i1b), w67 = fold(v.v[6], zero, i1a, i1b);
   DD const z0 = fold(w01, w23, i2a, i2b), z1 = fold(w45, w67, i2a, i2b);
   DD const t = fold(z0, z1, i3a, i3b);
-  // Lanes: a0, a1, a2, 3 d0, d1, d2, 3 d3, 0.
-  __m512d const sum = _mm512_add_pd(t.h, t.l);
-  __m512d const third = _mm512_setr_pd(1.0, 1.0, 1.0, 1.0 / 3.0, 1.0, 1.0, 1.0 / 3.0, 0.0);
-  __m512d const coef = _mm512_mul_pd(sum, _mm512_mul_pd(third, _mm512_set1_pd(scale)));
-  __m512d const ac1 = _mm512_add_pd(vabs(paqa.h), vabs(sata.h));
-  __m512d const ac2 = _mm512_add_pd(vabs(pbqb.h), vabs(sbtb.h));
-  __m512d const acm = _mm512_add_pd(_mm512_add_pd(vabs(paqb.h), vabs(pbqa.h)),
-                                    _mm512_add_pd(vabs(satb.h), vabs(sbta.h)));
-  __m512d const arr = vabs(rr.h), va = vabs(aw), vb = vabs(bw);
-  __m512d m[8] = {_mm512_mul_pd(ac1, arr), _mm512_mul_pd(acm, arr), _mm512_mul_pd(ac2, arr),
-                  _mm512_mul_pd(ac1, va),  _mm512_mul_pd(ac1, vb),  _mm512_mul_pd(ac2, va),
-                  _mm512_mul_pd(ac2, vb),  _mm512_setzero_pd()};
-  __m512d const m01 = fold_abs(m[0], m[1], i1a, i1b), m23 = fold_abs(m[2], m[3], i1a, i1b);
-  __m512d const m45 = fold_abs(m[4], m[5], i1a, i1b), m67 = fold_abs(m[6], m[7], i1a, i1b);
+  __m512d const m01 = fold_abs(v.m[0], v.m[1], i1a, i1b), m23 = fold_abs(v.m[2], v.m[3], i1a, i1b);
+  __m512d const m45 = fold_abs(v.m[4], v.m[5], i1a, i1b);
+  __m512d const m67 = fold_abs(v.m[6], _mm512_setzero_pd(), i1a, i1b);
   __m512d const mt =
       fold_abs(fold_abs(m01, m23, i2a, i2b), fold_abs(m45, m67, i2a, i2b), i3a, i3b);
-  // 32 u^2 (sum of |terms|) <= 2^-56 (the sum), and the sum > 0.
-  __m512d const bound = _mm512_mul_pd(mt, _mm512_set1_pd(32.0 * 0x1p-106 * 0x1p56));
-  __mmask8 const ok = _mm512_cmp_pd_mask(bound, sum, _CMP_LE_OQ) &
-                      _mm512_cmp_pd_mask(sum, _mm512_setzero_pd(), _CMP_GT_OQ);
+  // Lanes: a0, a1, a2, 3 d0, d1, d2, 3 d3, 0.
+  __m512d const third = _mm512_setr_pd(1.0, 1.0, 1.0, kThird, 1.0, 1.0, kThird, 0.0);
+  __mmask8 ok;
+  __m512d const coef = finish(t, mt, _mm512_mul_pd(third, _mm512_set1_pd(scale)), ok);
   _mm512_storeu_pd(out.c, coef);
   out.scale = scale;
   return (ok & 0x7F) == 0x7F;
@@ -195,54 +236,62 @@ PW85_V4_INLINE bool rational_coefficients_dd(
 // (Bernstein form above; phi = A / B, f = s t phi, eq. (M12)), and a bound
 // edf on the error of the computed f' (first order in u). f itself is
 // within kRationalRel f of the exact value (positive terms only).
-struct RatEval {
-  double lambda, phi, dphi;
-  double f, df, d2f, d3f, d4f, edf;
+// One pair (T = double, K = RationalDD: default.cpp) or one pair per lane
+// (T a vector type, K its coefficients: contact/rational_lanes.cpp), the same
+// IEEE operations in each lane. Returns true (T = double) or the mask of the
+// lanes where the evaluation holds.
+template <class T>
+struct RatEvalT {
+  T lambda, phi, dphi;
+  T f, df, d2f, d3f, d4f, edf;
 };
+typedef RatEvalT<double> RatEval;
 
-PW85_ALWAYS_INLINE bool f_eval_rational(double lambda, RationalDD const &k,
-                                        RatEval &e) noexcept {
-  double const a0 = k.c[0], a1 = k.c[1], a2 = k.c[2];
-  double const d0 = k.c[3], d1 = k.c[4], d2 = k.c[5], d3 = k.c[6];
-  double const s = 1.0 - lambda, t = lambda;
-  double const ss = s * s, st = s * t, tt = t * t;
-  double const A = (a0 * ss + a2 * tt) + a1 * st;
-  double const B = (d0 * ss) * s + (d1 * ss) * t + ((d2 * tt) * s + (d3 * tt) * t);
+template <class T, class K>
+PW85_ALWAYS_INLINE lanes::MaskOf<T> f_eval_rational(T lambda, K const &k,
+                                                    RatEvalT<T> &e) noexcept {
+  using lanes::vabs;
+  using lanes::finite;
+  T const a0 = k.c[0], a1 = k.c[1], a2 = k.c[2];
+  T const d0 = k.c[3], d1 = k.c[4], d2 = k.c[5], d3 = k.c[6];
+  T const s = 1.0 - lambda, t = lambda;
+  T const ss = s * s, st = s * t, tt = t * t;
+  T const A = (a0 * ss + a2 * tt) + a1 * st;
+  T const B = (d0 * ss) * s + (d1 * ss) * t + ((d2 * tt) * s + (d3 * tt) * t);
   // Derivatives with respect to lambda (ds = -dt = -dlambda).
-  double const A1 = 2.0 * (a2 * t - a0 * s) + a1 * (s - t);
-  double const A2 = 2.0 * ((a0 + a2) - a1);
-  double const e0 = d1 - 3.0 * d0, e1 = d2 - d1, e2 = 3.0 * d3 - d2;
-  double const B1 = (e0 * ss + e2 * tt) + 2.0 * e1 * st;
-  double const B2 = 2.0 * ((e2 * t - e0 * s) + e1 * (s - t));
-  double const B3 = 2.0 * ((e0 + e2) - 2.0 * e1);
+  T const A1 = 2.0 * (a2 * t - a0 * s) + a1 * (s - t);
+  T const A2 = 2.0 * ((a0 + a2) - a1);
+  T const e0 = d1 - 3.0 * d0, e1 = d2 - d1, e2 = 3.0 * d3 - d2;
+  T const B1 = (e0 * ss + e2 * tt) + 2.0 * e1 * st;
+  T const B2 = 2.0 * ((e2 * t - e0 * s) + e1 * (s - t));
+  T const B3 = 2.0 * ((e0 + e2) - 2.0 * e1);
   // Eq. (M25): phi_k = d^k phi / d lambda^k = N_k / B^(k + 1), from sum_i C(k, i)
   // phi_i B_(k-i) = A_k: the numerators are products and sums only, so
   // they are formed while the division runs (B^5 stays in range: the
   // coefficients are scaled, rational_coefficients_dd).
-  double const ib = 1.0 / B;
-  double const ib2 = ib * ib, ib3 = ib2 * ib, ib4 = ib2 * ib2, ib5 = ib4 * ib;
-  double const N1 = A1 * B - A * B1;
-  double const N2 = (A2 * B - A * B2) * B - N1 * (2.0 * B1);
-  double const N3 = -(N2 * (3.0 * B1) + (N1 * (3.0 * B2) + (A * B) * B3) * B);
-  double const N4 = -(N3 * (4.0 * B1) + (N2 * (6.0 * B2) + (N1 * (4.0 * B3)) * B) * B);
-  double const phi = A * ib;
-  double const phi1 = N1 * ib2, phi2 = N2 * ib3, phi3 = N3 * ib4, phi4 = N4 * ib5;
+  T const ib = 1.0 / B;
+  T const ib2 = ib * ib, ib3 = ib2 * ib, ib4 = ib2 * ib2, ib5 = ib4 * ib;
+  T const N1 = A1 * B - A * B1;
+  T const N2 = (A2 * B - A * B2) * B - N1 * (2.0 * B1);
+  T const N3 = -(N2 * (3.0 * B1) + (N1 * (3.0 * B2) + (A * B) * B3) * B);
+  T const N4 = -(N3 * (4.0 * B1) + (N2 * (6.0 * B2) + (N1 * (4.0 * B3)) * B) * B);
+  T const phi = A * ib;
+  T const phi1 = N1 * ib2, phi2 = N2 * ib3, phi3 = N3 * ib4, phi4 = N4 * ib5;
   e.lambda = lambda;
   set_f_from_phi(lambda, phi, phi1, phi2, phi3, e);  // f = p phi, eq. (M12)
-  double const p = lambda * (1.0 - lambda), p1 = 1.0 - 2.0 * lambda;
+  T const p = lambda * (1.0 - lambda), p1 = 1.0 - 2.0 * lambda;
   e.d4f = -12.0 * phi2 + 4.0 * p1 * phi3 + p * phi4;
   // Error of f' = p1 phi + p (A1 - phi B1) / B: the terms of A1 and B1 in
   // absolute value, with their few roundings, and the error of phi.
-  double const A1a = 2.0 * (a2 * t + a0 * s) + a1 * std::fabs(s - t);
-  double const B1a = (std::fabs(e0) * ss + std::fabs(e2) * tt) + 2.0 * std::fabs(e1) * st;
-  e.edf = 16.0 * kU * (std::fabs(p1) * phi + p * (A1a + phi * B1a) * ib);
+  T const A1a = 2.0 * (a2 * t + a0 * s) + a1 * vabs(s - t);
+  T const B1a = (vabs(e0) * ss + vabs(e2) * tt) + 2.0 * vabs(e1) * st;
+  e.edf = 16.0 * kU * (vabs(p1) * phi + p * (A1a + phi * B1a) * ib);
   // B >= 2^-150 keeps B^5 phi_4 (N4 and its terms) normal: for inputs
   // within the range of contact.hpp, phi >= |r|^2 / lambda_max(Q) > 2^-183
   // and the scaled B <= 8, so N_k = B^(k+1) phi_k cannot underflow into a
   // finite but wrong phi_k. A smaller B (near an end of [0, 1] where one
   // det Q_i is below 2^-150 times the scale) declines to the general method.
-  return B >= 0x1p-150 && A > 0.0 && std::isfinite(e.f) && std::isfinite(e.d4f) &&
-         std::isfinite(e.edf);
+  return (B >= 0x1p-150) & (A > 0.0) & finite(e.f) & finite(e.d4f) & finite(e.edf);
 }
 
 }  // namespace pw85

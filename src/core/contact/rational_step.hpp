@@ -1,0 +1,119 @@
+// The decisions of DEFAULT's Halley iterations (docs/methods.md,
+// "PW85_METHOD_DEFAULT"), written once for one pair (T = double: step 1 of
+// default_body and the rational step, default.cpp) and for one pair per
+// vector lane (T a vector type: contact/default_lanes.cpp,
+// contact/rational_lanes.cpp). Every lane performs the scalar operations in
+// the same order (those files are compiled without contraction,
+// src/meson.build), so a lane takes the decisions of the one-pair code and
+// computes the same bits.
+#pragma once
+
+#include <type_traits>
+
+#include "common/fp.hpp"
+#include "common/isa.hpp"
+#include "common/lanes.hpp"
+#include "contact/default_params.hpp"
+
+namespace pw85 {
+
+// Halley iterations of DEFAULT: at most this many evaluations.
+constexpr int kHalleyMaxIter = 30;
+
+// Relative error of f from f_eval_rational (f_rational_dd.hpp): 2.2 u from
+// the coefficients, about 13 u from the evaluation of A / B and s t.
+constexpr double kRationalRel = 16.0 * kU;
+
+template <class T>
+struct HalleyDecision {
+  T a, step, next;  // a = -f''; next = lambda + step
+  lanes::MaskOf<T> inside, tiny, near;
+};
+
+// Narrows [lo, hi] by the sign of f', takes the safeguarded Halley step (M8)
+// (Newton where Halley's denominator is not positive, bisection where f is
+// not concave), and decides whether lambda is near enough for the quartic
+// model (M18): f' small (gap f'^2 / 2a below kExtrapGap f) with the step
+// inside the bracket, or the step below rounding. E is an evaluation with
+// f, df, d2f, d3f, d4f at lambda.
+template <class T, class E>
+PW85_ALWAYS_INLINE HalleyDecision<T> halley_decide(T lambda, E const &e, T &lo,
+                                                   T &hi) noexcept {
+  using namespace default_params;
+  using lanes::select;
+  using lanes::vabs;
+  typedef lanes::MaskOf<T> K;
+  K const up = e.df > 0.0;
+  lo = select(up, lambda, lo);
+  hi = select(up, hi, lambda);
+  T const a = -e.d2f;
+  T const den = 2.0 * e.d2f * e.d2f - e.df * e.d3f;
+  K const apos = a > 0.0;
+  K const halley = apos & (den > 0.0);
+  T const step = select(halley, -2.0 * e.df * e.d2f / den,  // Halley, eq. (M8)
+                        select(apos, e.df / a, 0.5 * (lo + hi) - lambda));
+  T const next = lambda + step;
+  K const inside = (next > lo) & (next < hi);
+  K const tiny = vabs(step) <= 2.0 * kU * lambda;
+  K near = apos & (tiny | (inside & (e.df * e.df <= 2.0 * a * kExtrapGap * e.f)));
+  // One branch per decision (opaque, isa.hpp): without it GCC tests
+  // each comparison in turn, and their outcomes vary from pair to pair.
+  if constexpr (std::is_same<T, double>::value) opaque(near);
+  return HalleyDecision<T>{a, step, next, inside, tiny, near};
+}
+
+// Error of the quartic Taylor model (M18) at lambda with increment h: its
+// truncation estimated by the last term, counted twice, and the error edf
+// of f' (how well the maximiser is known, eq. (M10)).
+template <class T>
+PW85_ALWAYS_INLINE T model_error(T edf, T h, T a, T d4f) noexcept {
+  using lanes::vabs;
+  T const h2 = h * h;
+  T const trunc = vabs(d4f * h2 * h2) * default_params::kInv24;
+  return edf * vabs(h) + edf * edf / (2.0 * a) + 2.0 * trunc;
+}
+
+// The model's increment f(lambda + h) - f(lambda).
+template <class T, class E>
+PW85_ALWAYS_INLINE T model_increment(T h, E const &e) noexcept {
+  using namespace default_params;
+  return h * (e.df + h * (0.5 * e.d2f + h * (e.d3f * kInv6 + h * e.d4f * kInv24)));
+}
+
+// One step of the rational iteration (default.cpp, rational_iterate) after
+// the evaluation e at lambda (f_eval_rational): done where the quartic
+// model (M18) at lambda is accurate (mu2 = f + the model's increment, at
+// lam = lambda + h, error err: kRationalRel f plus one rounding, the
+// model's error and that of lambda, eq. (M10)); tiny where the step is
+// below rounding (the rational step declines); next: the next iterate.
+template <class T>
+struct RationalDecision {
+  lanes::MaskOf<T> done, tiny;
+  T next, mu2, lam, err;
+};
+
+template <class T, class E>
+PW85_ALWAYS_INLINE RationalDecision<T> rational_decide(T lambda, E const &e, T &lo,
+                                                       T &hi) noexcept {
+  using namespace default_params;
+  using lanes::select;
+  HalleyDecision<T> const hd = halley_decide(lambda, e, lo, hi);
+  RationalDecision<T> d{};
+  d.tiny = hd.tiny;
+  d.next = select(hd.inside, hd.next, 0.5 * (lo + hi));
+  if (lanes::any(hd.near)) {
+    T const h = select(hd.tiny, T{}, hd.step);
+    T const err = (kRationalRel + kU) * e.f + model_error(e.edf, h, hd.a, e.d4f);
+    lanes::MaskOf<T> done = hd.near & (err <= kFastRel * e.f);
+    if constexpr (std::is_same<T, double>::value) opaque(done);
+    d.done = done;
+    if (lanes::any(done)) {
+      d.mu2 = e.f + model_increment(h, e);
+      d.lam = lambda + h;
+      d.err = err;
+    }
+  }
+  return d;
+}
+
+}  // namespace pw85
