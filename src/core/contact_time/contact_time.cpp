@@ -129,9 +129,10 @@ bool sample(Motion const &mo, double t, Sample &p, int &evaluations) noexcept {
   return true;
 }
 
-// Newton's step on mu(t) - 1 = f / (1 + mu) (linear in t without rotation
-// when r12(t) passes through 0, convex in general: from the side where
-// mu > 1 it does not overshoot) from f = mu^2 - 1 and df = dmu^2/dt (T8).
+// Newton's step on mu(t) - 1 = f / (1 + mu) from f = mu^2 - 1 and
+// df = dmu^2/dt (T8). Without rotation mu(t) is convex (a gauge along a
+// line; linear when the line passes through 0): from the side where mu > 1
+// the steps do not overshoot.
 double newton_step(double f, double df) noexcept {
   double const mu = std::sqrt(1.0 + f);
   return -2.0 * mu * f / ((1.0 + mu) * df);
@@ -172,12 +173,13 @@ bool precise(Motion const &mo, double t, double &f, double &df, int &evaluations
 // The crossing of mu^2 = 1 in [a, b], f(a) > 0 >= f(b) (T8). First on
 // DEFAULT's values: Newton's step from the last sample when it stays inside
 // the bracket, else regula falsi, else (or when the bracket did not halve)
-// bisection, until the step or the bracket is below tol. Then, where
+// bisection, until the step or the bracket is below tol: c. Then, where
 // DEFAULT's error e bounds the time only to e / |dmu^2/dt| > tol, Newton
-// steps on precise() (at most kPreciseSteps), kept in [0, t_k]: t_k, the
-// time contact was confirmed, is before any time with mu^2 < kLevel^2.
-// Writes the crossing to t; false when an evaluation fails or the budget
-// runs out.
+// steps on precise() (at most kPreciseSteps) from c, kept within
+// 4 e / |dmu^2/dt| of c and in [0, t_k] (t_k, the time contact was
+// confirmed, is before any time with mu^2 < kLevel^2); c stands when such
+// an evaluation fails. Writes the crossing to t; false when a DEFAULT
+// evaluation fails or the budget runs out in the first part.
 constexpr int kPreciseSteps = 4;
 
 bool refine(Motion const &mo, double tol, double t_k, Sample a, Sample b, double &t,
@@ -206,17 +208,18 @@ bool refine(Motion const &mo, double tol, double t_k, Sample a, Sample b, double
     t = c;
     return true;
   }
+  double const w = 4.0 * e / std::fabs(x.df);
+  double const lo = std::fmax(c - w, 0.0), hi = std::fmin(c + w, t_k);
+  t = c;
   for (int k = 0; k < kPreciseSteps; ++k) {
     double f, df;
-    if (evaluations >= kContactTimeMaxEval || !precise(mo, c, f, df, evaluations)) return false;
-    double const next = std::fmin(std::fmax(c + newton_step(f, df), 0.0), t_k);
-    if (!(std::fabs(next - c) > tol)) {
-      c = next;
-      break;
-    }
-    c = next;
+    if (evaluations >= kContactTimeMaxEval || !precise(mo, c, f, df, evaluations)) break;
+    double const next = std::fmin(std::fmax(c + newton_step(f, df), lo), hi);
+    if (std::isnan(next)) break;
+    bool const done = !(std::fabs(next - c) > tol);
+    t = c = next;
+    if (done) break;
   }
-  t = c;
   return true;
 }
 
