@@ -31,7 +31,7 @@ namespace {
 // Level of the advancement (T6): the steps certify mu >= kLevel, i.e.
 // mu^2 >= kLevel^2 = 1 - 2.27e-13, 22 times DEFAULT's documented accuracy
 // (1e-14) below 1. Where contact is not confirmed (mu^2 > 1 - 2e-14), the
-// gap N0 - kLevel D0 >= ~1e-13 D0 is 40 times its rounding margin (12 u D0,
+// gap N0 - kLevel D0 >= ~1e-13 D0 is 75 times its rounding margin (12 u D0,
 // minorant.hpp): the steps never shrink to zero at a minimum of mu^2.
 constexpr double kLevel = 1.0 - 0x1p-43;
 // The refinement (T8) stops when its Newton step or its bracket is below
