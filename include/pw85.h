@@ -656,18 +656,21 @@ PW85_API int pw85_scene_contact_derivatives(long long n, double const *centres,
  * r12(t) = r12 + t v12 and each ellipsoid rotates about its centre with
  * constant angular velocity w_i: Q_i(t) = R_i(t) Q_i R_i(t)^T,
  * R_i(t) = exp(t [w_i]x). Writes to *t the first time t_c in [0, t_max] at
- * which mu^2(t) <= 1 (within a few ulps at a transversal crossing; 0 when
- * the pair overlaps or touches at t = 0), or +INFINITY when mu^2 > 1 on all
- * of [0, t_max]. Certified: *t is never later than the first t with
- * mu^2(t) < 1 - 1e-12, nor earlier than the first t with
- * mu^2(t) <= 1 + 1e-13; trajectories whose minimum of mu^2 lies in
- * [1 - 1e-12, 1 + 1e-13] may go either way. Returns PW85_OK,
+ * which mu^2(t) <= 1 (0 when the pair overlaps or touches at t = 0), or
+ * +INFINITY when there is none. Certified: *t is never later than the
+ * first t with mu^2(t) < 1 - 2.3e-13; a contact at *t > 0 is reported only
+ * where mu^2 + 1e-14 <= 1 was computed, so never when mu^2 > 1 on
+ * (0, t_max] and mu^2(0) > 1 + 1e-14; trajectories whose minimum of mu^2
+ * lies in [1 - 2.3e-13, 1] may go either way. *t is a crossing of
+ * mu^2 = 1, refined beyond double precision where needed (measured within
+ * 3e-12 t_max of t_c at grazing crossings of 1 - 1e-12, 2.5e-11 with the
+ * rounding of Q_i(t) when rotating; docs/contact_time.md). Returns PW85_OK,
  * PW85_ERR_INVALID_ARGUMENT (NULL, NaN or infinite value, t_max <= 0, or
  * r12 + t v12 or t w_i overflowing within the horizon; *t is NaN),
  * PW85_ERR_NOT_SPD (q1 or q2 not positive definite; *t is NaN) or
  * PW85_ERR_NO_CONVERGENCE (PW85_CONTACT_TIME_MAX_EVAL evaluations spent, an
  * evaluation failed, or no certified step can advance t: *t is the time up
- * to which [0, *t] is certified free of contact). */
+ * to which mu^2 >= 1 - 2.3e-13 is certified on [0, *t]). */
 PW85_API int pw85_contact_time(double const r12[PW85_DIM], double const v12[PW85_DIM],
                                double const q1[PW85_SYM], double const w1[PW85_DIM],
                                double const q2[PW85_SYM], double const w2[PW85_DIM],

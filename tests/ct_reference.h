@@ -183,10 +183,10 @@ static inline ctr_real ctr_mu2_at(const ct_traj *tr, ctr_real t, ctr_real *lam) 
 
 /* ---- First crossings ------------------------------------------------------ */
 
-#define CT_LEVELS 3
-/* Levels of mu^2: 1 - 1e-12 (below: must be detected), 1 (contact),
- * 1 + 1e-13 (above: must not be reported). */
-static const double ct_levels[CT_LEVELS] = {1.0 - 1e-12, 1.0, 1.0 + 1e-13};
+#define CT_LEVELS 2
+/* Levels of mu^2: 1 - 1e-12 (below: must be detected), 1 (contact: not to
+ * be reported earlier, nor on a trajectory whose mu^2 stays above it). */
+static const double ct_levels[CT_LEVELS] = {1.0 - 1e-12, 1.0};
 
 typedef struct {
   double t[CT_LEVELS]; /* first time mu^2 <= level, INFINITY when none */
@@ -271,6 +271,32 @@ static inline void ct_reference(const ct_traj *tr, ct_ref *out) {
   free(lm);
 }
 
+/* ---- Verdict on a reported time -------------------------------------------- */
+
+/* Verdict on the time t reported with PW85_OK for the trajectory tr, against
+ * its reference, tol = 1e-9 t_max (docs/contact_time.md):
+ *   CT_MISSED: the reference finds mu^2 < 1 - 1e-12, first at t_a, and t is
+ *              later than t_a + tol (or +INFINITY);
+ *   CT_EARLY:  t < t_c - tol, t_c the reference's first crossing of mu^2 = 1;
+ *   CT_FALSE:  a contact (t finite) on a trajectory whose reference minimum of
+ *              mu^2 is above 1.
+ * The last two are waived when the reference finds mu^2 <= 1 at t or t + tol
+ * (a dip narrower than its samples: then t_c <= t + tol). */
+enum { CT_MISSED = 1, CT_EARLY = 2, CT_FALSE = 4 };
+static inline int ct_verdict(const ct_traj *tr, const ct_ref *ref, double t) {
+  double const tol = 1e-9 * tr->t_max;
+  int v = 0;
+  if (ref->t[0] != INFINITY && !(t <= ref->t[0] + tol)) v |= CT_MISSED;
+  if (t != INFINITY && ref->t[1] != INFINITY && !(t >= ref->t[1] - tol)) v |= CT_EARLY;
+  if (t != INFINITY && ref->t[1] == INFINITY) v |= CT_FALSE;
+  if (v & (CT_EARLY | CT_FALSE)) {
+    ctr_real lam = 0.5L;
+    if (ctr_mu2_at(tr, t, &lam) <= 1 || ctr_mu2_at(tr, t + tol, &lam) <= 1)
+      v &= ~(CT_EARLY | CT_FALSE);
+  }
+  return v;
+}
+
 /* ---- Trajectories ---------------------------------------------------------- */
 
 typedef struct { uint64_t s; } ct_rng;
@@ -327,6 +353,31 @@ enum { CT_RANDOM, CT_GRAZING, CT_SPINNING, CT_KINDS };
  *    mu^2 = 1 + delta at r*, touching it at t = 0.5, delta = +-1e-6,
  *    +-1e-9, +-1e-12 (k selects);
  *  - CT_SPINNING: as CT_RANDOM with 2-5 turns of each ellipsoid. */
+/* The translation of CT_GRAZING for the ellipsoids q1, q2 (largest
+ * semi-axes a1, a2), d a random unit vector: tangent to mu^2 = 1 + delta. */
+static inline void ct_graze(ct_rng *g, double a1, double a2, const double d[3], double delta,
+                            ct_traj *tr) {
+  double e[3];
+  ctr_real R[3] = {d[0], d[1], d[2]}, A[6], B[6], lam = 0.5L, s[3], Q[6];
+  for (int i = 0; i < 6; i++) { A[i] = tr->q1[i]; B[i] = tr->q2[i]; }
+  ctr_real m2 = ctr_mu2(R, A, B, &lam);
+  ctr_real sc = sqrtl((1.0L + delta) / m2);
+  for (int i = 0; i < 3; i++) R[i] *= sc; /* mu^2(R) = 1 + delta */
+  for (int i = 0; i < 6; i++) Q[i] = (1 - lam) * A[i] + lam * B[i];
+  ctr_solve(Q, R, s); /* normal of the level set at R */
+  ctr_real sn = sqrtl(ctr_dot(s, s));
+  ct_unit(g, e);
+  ctr_real en = 0, t[3];
+  ctr_real es = (e[0] * s[0] + e[1] * s[1] + e[2] * s[2]) / (sn * sn);
+  for (int i = 0; i < 3; i++) { t[i] = e[i] - es * s[i]; en += t[i] * t[i]; }
+  en = sqrtl(en);
+  double speed = (a1 + a2) * (0.5 + 2 * ct_uniform(g));
+  for (int i = 0; i < 3; i++) {
+    tr->v[i] = (double)(speed * t[i] / en);
+    tr->r0[i] = (double)(R[i] - 0.5L * tr->v[i]);
+  }
+}
+
 static inline void ct_make(ct_rng *g, double lo, double hi, int kind, int k, ct_traj *tr) {
   double a1, a2, d[3], e[3];
   ct_ellipsoid(g, lo, hi, tr->q1, &a1);
@@ -336,25 +387,7 @@ static inline void ct_make(ct_rng *g, double lo, double hi, int kind, int k, ct_
   ct_unit(g, d);
   if (kind == CT_GRAZING) {
     static const double deltas[6] = {1e-6, -1e-6, 1e-9, -1e-9, 1e-12, -1e-12};
-    double delta = deltas[k % 6];
-    ctr_real R[3] = {d[0], d[1], d[2]}, A[6], B[6], lam = 0.5L, s[3], Q[6];
-    for (int i = 0; i < 6; i++) { A[i] = tr->q1[i]; B[i] = tr->q2[i]; }
-    ctr_real m2 = ctr_mu2(R, A, B, &lam);
-    ctr_real sc = sqrtl((1.0L + delta) / m2);
-    for (int i = 0; i < 3; i++) R[i] *= sc; /* mu^2(R) = 1 + delta */
-    for (int i = 0; i < 6; i++) Q[i] = (1 - lam) * A[i] + lam * B[i];
-    ctr_solve(Q, R, s); /* normal of the level set at R */
-    ctr_real sn = sqrtl(ctr_dot(s, s));
-    ct_unit(g, e);
-    ctr_real en = 0, t[3];
-    ctr_real es = (e[0] * s[0] + e[1] * s[1] + e[2] * s[2]) / (sn * sn);
-    for (int i = 0; i < 3; i++) { t[i] = e[i] - es * s[i]; en += t[i] * t[i]; }
-    en = sqrtl(en);
-    double speed = (a1 + a2) * (0.5 + 2 * ct_uniform(g));
-    for (int i = 0; i < 3; i++) {
-      tr->v[i] = (double)(speed * t[i] / en);
-      tr->r0[i] = (double)(R[i] - 0.5L * tr->v[i]);
-    }
+    ct_graze(g, a1, a2, d, deltas[k % 6], tr);
     return;
   }
   double dist = (a1 + a2) * (1.1 + 1.9 * ct_uniform(g));

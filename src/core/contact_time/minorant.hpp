@@ -7,9 +7,10 @@
 // (t_k + tau), N(tau) = r12.u + tau v12.u exactly, and
 //   |dh_i/dt| <= om_i = |w_i| (a_max - a_min)                                  (T3)
 //   d^2h_i/dt^2 <= Om_i = |w_i|^2 (a_max^2 - a_min^2) / a_min                  (T4)
-// so D(tau) = h1 + h2 <= D0 + min(om tau, D0' tau + Om tau^2 / 2) and
-// phi(u, t_k + tau) >= 1 (hence mu >= 1) while
-//   g(tau) = (N0 - D0) + v12.u tau - min(om tau, D0' tau + Om tau^2 / 2) >= 0.  (T5)
+// so D(tau) = h1 + h2 <= D0 + min(om tau, D0' tau + Om tau^2 / 2) and, for a
+// level m in (0, 1], phi(u, t_k + tau) >= m (hence mu >= m) while
+//   g(tau) = (N0 - m D0) + v12.u tau - min(om tau, m D0' tau + Om tau^2 / 2) >= 0  (T5)
+// (m om, m Om <= om, Om).
 #pragma once
 
 #include <cmath>
@@ -34,9 +35,10 @@ struct RateBounds {
 // (gap and slopes lowered by bounds on their rounding errors).
 struct Minorant {
   double h[2];   // h_1, h_2 at t_k
-  double gap;    // N0 - D0
+  double gap;    // N0 - m D0
   double n1;     // v12.u
-  double slope;  // v12.u - D0'
+  double d1;     // D0'
+  double slope;  // v12.u - m D0'
 };
 
 // u^T Q u in double, and the sum of the magnitudes of its terms (its
@@ -80,14 +82,16 @@ inline dd::DD dot_dd(Vec3 const &a, Vec3 const &b) noexcept {
   return add(s, two_prod<false>(a[2], b[2]));
 }
 
-// Terms of (T5) at t for u = s / |s| and the trajectory r0 + t v:
+// Terms of (T5) at t for u = s / |s|, the trajectory r0 + t v and the level
+// m (a double in (0, 1]):
 // N0 = r0.u + t v.u in double-double (no rounding of r12(t)), h_i by
 // supports, D0' = sum_i w_i . (Q_i u x u) / h_i (d/dt of u^T R Q_i R^T u is
 // 2 u.(w_i x Q_i u), dR/dt = [w_i]x R, and dh = d(h^2) / (2 h)). The margins
 // bound the rounding errors: a few u D0 for the gap, u |v| for v.u and
 // u |w_i| |Q_i|_1 / h_i for D0'.
 inline bool minorant(Vec3 const &r0, Vec3 const &v, double t, Sym3 const &q1, Vec3 const &w1,
-                     Sym3 const &q2, Vec3 const &w2, Vec3 const &s, Minorant &m) noexcept {
+                     Sym3 const &q2, Vec3 const &w2, Vec3 const &s, double level,
+                     Minorant &m) noexcept {
   double const sn = norm(s);
   if (!(sn > 0.0) || !std::isfinite(sn)) return false;
   Vec3 const u{{s[0] / sn, s[1] / sn, s[2] / sn}};
@@ -99,7 +103,7 @@ inline bool minorant(Vec3 const &r0, Vec3 const &v, double t, Sym3 const &q1, Ve
   double const d0 = h1 + h2;
   m.h[0] = h1;
   m.h[1] = h2;
-  double const gap = dd::to_double(dd::sub(n0, dd::two_sum(h1, h2)));
+  double const gap = dd::to_double(dd::sub(n0, dd::mul<false>(dd::two_sum(h1, h2), level)));
   Vec3 const q1u = multiply(q1, u), q2u = multiply(q2, u);
   double const d1 = dot(w1, cross(q1u, u)) / h1 + dot(w2, cross(q2u, u)) / h2;
   double qn1 = 0.0, qn2 = 0.0;
@@ -110,7 +114,8 @@ inline bool minorant(Vec3 const &r0, Vec3 const &v, double t, Sym3 const &q1, Ve
   double const rot = norm(w1) * qn1 / h1 + norm(w2) * qn2 / h2;
   m.gap = gap - 12 * kU * d0 - 8 * kU * kU * (norm(r0) + t * norm(v));
   m.n1 = dd::to_double(vu) - 4 * kU * norm(v);
-  m.slope = m.n1 - d1 - 32 * kU * rot;
+  m.d1 = d1;
+  m.slope = m.n1 - level * d1 - 32 * kU * rot;
   return std::isfinite(m.gap) && std::isfinite(m.slope);
 }
 
