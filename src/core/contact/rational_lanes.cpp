@@ -137,12 +137,29 @@ PW85_V4_INLINE M8 coefficients(Vec3L<W> const &r, SymL<W> const &a, SymL<W> cons
   M8 const bits = reinterpret_cast<M8>(tr);
   M8 const e = ((bits >> 52) & 0x7FF) - 1023;
   V8 const scale = reinterpret_cast<V8>((1023 - 3 * e) << 52);
-  __mmask8 ok = 0xFF;
+  __mmask8 ok = 0xFF, okd[2] = {0xFF, 0xFF};
   for (int j = 0; j < 7; ++j) {
     double const third = j == 3 || j == 6 ? kThird : 1.0;
     __mmask8 okj;
     out.c[j] = finish(add(s0123[j], v[j]), m0123[j] + m[j], bc(third) * scale, okj);
-    ok &= okj;
+    if (j == 3 || j == 6)
+      okd[j == 6] = okj;
+    else
+      ok &= okj;
+  }
+  // d0 and d3 where their bound fails: det_precise, as in
+  // rational_coefficients_dd.
+  SymL<W> const *const qs[2] = {&a, &b};
+  for (int m = 0; m < 2; ++m) {
+    if (okd[m] != 0xFF) {
+      __m512d q[kSym], det;
+      for (int i = 0; i < kSym; ++i) q[i] = (*qs[m])[i];
+      __mmask8 const take = static_cast<__mmask8>(~okd[m]) & to_bits(det_precise(q, det));
+      int const j = m == 0 ? 3 : 6;
+      out.c[j] = _mm512_mask_blend_pd(take, out.c[j], det * scale);
+      okd[m] |= take;
+    }
+    ok &= okd[m];
   }
   return from_bits(ok);
 }
