@@ -43,7 +43,8 @@ struct Pair {
 // (default.cpp inlines them into its v4 variant).
 __attribute__((target("arch=x86-64-v4"), noinline)) bool coefficients_v4(Pair const &p,
                                                                         pw85::RationalDD &k) {
-  return pw85::rational_coefficients_dd(p.r, p.q1, p.q2, k);
+  return pw85::rational_coefficients_dd(p.r, p.q1, p.q2, k) ||
+         pw85::rational_dets_precise(p.q1, p.q2, k);
 }
 
 __attribute__((target("arch=x86-64-v4"), noinline)) bool eval_v4(double lambda,
@@ -85,14 +86,17 @@ void mul3(Ctx &ctx, BigInt &r, BigInt const &a, BigInt const &b, BigInt const &c
   pw85::exact::mul(ctx, r, t, c);
 }
 
-// |det - det Q| <= (num / den) u det Q, det Q > 0 (exact comparison).
-bool det_within(pw85::Sym3 const &q, double det, std::uint64_t num, std::uint64_t den) {
-  Ctx ctx;
+// The smallest exponent of the entries of q.
+int min_exponent(pw85::Sym3 const &q) {
   int emin = 1 << 20;
   for (int i = 0; i < 6; ++i)
     if (q[i] != 0.0 && exponent(q[i]) < emin) emin = exponent(q[i]);
-  if (det != 0.0 && exponent(det) < 3 * emin) emin = (exponent(det) - 2) / 3 - 1;
-  BigInt x[6], t, u, d, dq, diff, lhs, rhs, k;
+  return emin;
+}
+
+// u = det Q 2^(-3 emin), exactly (emin <= min_exponent(q)).
+void exact_det(Ctx &ctx, pw85::Sym3 const &q, int emin, BigInt &u) {
+  BigInt x[6], t, dq;
   for (int i = 0; i < 6; ++i) to_big(ctx, q[i], emin, x[i]);
   // det Q = q00 q11 q22 - q00 q12^2 - q01^2 q22 + 2 q01 q02 q12 - q02^2 q11.
   mul3(ctx, dq, x[0], x[3], x[5]);
@@ -105,6 +109,29 @@ bool det_within(pw85::Sym3 const &q, double det, std::uint64_t num, std::uint64_
   pw85::exact::add(ctx, dq, u, t);
   mul3(ctx, t, x[2], x[2], x[3]);
   pw85::exact::sub(ctx, u, dq, t);
+}
+
+// det Q to 113 bits (its three leading limbs).
+real det_real(pw85::Sym3 const &q) {
+  Ctx ctx;
+  int const emin = min_exponent(q);
+  BigInt u;
+  exact_det(ctx, q, emin, u);
+  real v = 0;
+  int const lo = u.n > 3 ? u.n - 3 : 0;
+  for (int i = u.n - 1; i >= lo; --i) v = v * 0x1p64 + (real)u.d[i];
+  for (int i = 0; i < lo; ++i) v = v * 0x1p64;
+  v = v * (real)std::ldexp(1.0, emin) * (real)std::ldexp(1.0, emin) * (real)std::ldexp(1.0, emin);
+  return u.s < 0 ? -v : v;
+}
+
+// |det - det Q| <= (num / den) u det Q, det Q > 0 (exact comparison).
+bool det_within(pw85::Sym3 const &q, double det, std::uint64_t num, std::uint64_t den) {
+  Ctx ctx;
+  int emin = min_exponent(q);
+  if (det != 0.0 && exponent(det) < 3 * emin) emin = (exponent(det) - 2) / 3 - 1;
+  BigInt u, d, diff, lhs, rhs, k;
+  exact_det(ctx, q, emin, u);
   to_big(ctx, det, 3 * emin, d);
   pw85::exact::sub(ctx, diff, d, u);
   if (ctx.overflow) g_error("big integer overflow");
@@ -181,10 +208,12 @@ void exact_coefficients(Pair const &p, real c[7]) {
   c[0] = quad(c1, p.r);
   c[1] = quad(cm, p.r);
   c[2] = quad(c2, p.r);
-  c[3] = trace_product(c1, m1) / 3;
+  // det Q1, det Q2 from exact big integers: their terms cancel by up to
+  // 2^75 in class 3, beyond the 113 bits of __float128.
+  c[3] = det_real(p.q1);
   c[4] = trace_product(c1, m2);
   c[5] = trace_product(m1, c2);
-  c[6] = trace_product(c2, m2) / 3;
+  c[6] = det_real(p.q2);
 }
 
 // f = s t A / B and f' from exact coefficients.
@@ -239,7 +268,7 @@ void test_coefficients(void) {
                   e / kU, cl.lo, cl.hi);
       }
     }
-  g_test_message("coefficients: %d of %d pairs accepted; max relative error %.3f u", accepted,
+  g_test_message("coefficients: %d of %d pairs accepted; max relative error of a0, a1, a2, d1, d2 %.3f u", accepted,
                  total, worst / kU);
   // Most pairs must take the rational step (otherwise it is not tested).
   g_assert_cmpint(accepted, >=, total * 9 / 10);

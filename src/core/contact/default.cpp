@@ -398,6 +398,20 @@ PW85_V4_INLINE bool rational_v4(
   return coef_ok && rational_iterate(k, lambda0, res);
 }
 
+// The rational step again where d0 or d3 failed its bound (cancellation
+// beyond 2^45: 18 % of bench_contact's class-3 pairs), with those two from
+// det_precise (f_rational_dd.hpp). False where rational_v4 declined for
+// another reason.
+PW85_V4_INLINE bool rational_precise_v4(
+    Vec3 const &r, Sym3 const &q1, Sym3 const &q2, MethodResult &res) noexcept {
+  RationalDD k;
+  if (rational_coefficients_dd(r, q1, q2, k) || !rational_dets_precise(q1, q2, k))
+    return false;
+  double lambda0 = scan_start(r, q1, q2);
+  if (lambda0 < 0.0) lambda0 = default_start(r, q1, q2);
+  return rational_iterate(k, lambda0, res);
+}
+
 // The general method compiled for x86-64-v4, from its own start (M22), with
 // the same IEEE operations as the baseline (-ffp-contract=off,
 // src/meson.build). Out of line: inlined into
@@ -406,6 +420,17 @@ PW85_V4_INLINE bool rational_v4(
 PW85_TARGET_V4 __attribute__((noinline)) Status default_body_v4(
     Vec3 const &r, Sym3 const &q1, Sym3 const &q2, MethodResult &res) noexcept {
   return default_body(r, q1, q2, res);
+}
+
+// After rational_v4 declined: rational_precise_v4, then the general method.
+// A separate function that recomputes the coefficients and the start:
+// rational_precise_v4 called from rational_v4 with its coefficients (inline
+// or not) made the one-pair DEFAULT call 13 ns slower in classes 0-2 of
+// bench_batch (87 -> 100 ns), where it never runs.
+PW85_TARGET_V4 __attribute__((noinline)) Status declined_v4(
+    Vec3 const &r, Sym3 const &q1, Sym3 const &q2, MethodResult &res) noexcept {
+  if (rational_precise_v4(r, q1, q2, res)) return kOk;
+  return default_body_v4(r, q1, q2, res);
 }
 #endif
 
@@ -418,7 +443,7 @@ PW85_TARGET_V4 Status contact_default_v4(Vec3 const &r, Sym3 const &q1, Sym3 con
                                          MethodResult &res) noexcept {
   res.method = kMethodDefault;
   if (rational_v4(r, q1, q2, res)) return kOk;
-  return default_body_v4(r, q1, q2, res);
+  return declined_v4(r, q1, q2, res);
 }
 
 PW85_TARGET_V4 Status contact_default_general_v4(Vec3 const &r, Sym3 const &q1,

@@ -36,6 +36,7 @@ namespace pw85 {
 struct RationalDD {
   double c[8];
   double scale;
+  unsigned ok;  // bit j: coefficient j passed its test (rational_coefficients_dd)
 };
 
 #if PW85_ISA_LEVELS
@@ -294,16 +295,24 @@ PW85_V4_INLINE bool rational_coefficients_dd(
   __m512d const coef = finish(t, mt, _mm512_mul_pd(third, _mm512_set1_pd(scale)), ok);
   _mm512_storeu_pd(out.c, coef);
   out.scale = scale;
-  if ((ok & 0x7F) == 0x7F) return true;
-  // a0, a1, a2, d1, d2 must pass; d0, d3 may come from det_precise.
-  if ((ok & kRatNotDet) != kRatNotDet) return false;
+  out.ok = ok & 0x7F;
+  return out.ok == 0x7F;
+}
+
+// After rational_coefficients_dd declined (out.ok: the coefficients that
+// passed): true when a0, a1, a2, d1, d2 passed and det_precise accepts d0
+// and d3 where they failed (out.c[3], out.c[6]: det Q1, det Q2 times
+// out.scale, within 1.13 u).
+PW85_V4_INLINE bool rational_dets_precise(Sym3 const &q1, Sym3 const &q2,
+                                          RationalDD &out) noexcept {
+  if ((out.ok & rdd::kRatNotDet) != rdd::kRatNotDet) return false;
   Sym3 const *const qs[2] = {&q1, &q2};
   for (int m = 0; m < 2; ++m) {
     int const j = m == 0 ? 3 : 6;
-    if (ok & (1u << j)) continue;
+    if (out.ok & (1u << j)) continue;
     double det;
     if (!det_precise(qs[m]->a, det)) return false;
-    out.c[j] = det * scale;
+    out.c[j] = det * out.scale;
   }
   return true;
 }
