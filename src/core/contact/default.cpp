@@ -1,8 +1,9 @@
 // PW85_METHOD_DEFAULT (docs/methods.md, section "DEFAULT"). On x86-64-v4,
 // first the rational step
 // (rational_iterate below: f from its seven coefficients in double-double,
-// f_rational_dd.hpp), from the grid start (M24) (start_scan.hpp); when it
-// declines, and on other CPUs:
+// f_rational_dd.hpp), from the grid start (M24) (start_scan.hpp); where
+// only d0 or d3 failed its bound, the same step again with those two from
+// det_precise (declined_v4); when it declines, and on other CPUs:
 //  0. from the start (M22) (start.hpp: Newton on the fixed-point equation of
 //     (M19) in logarithmic coordinates), a safeguarded
 //     Halley iteration as NEWTON's (newton.cpp) but with f and its
@@ -386,7 +387,7 @@ PW85_ALWAYS_INLINE bool rational_iterate(RationalDD const &k, double lambda0,
 // coefficients come first in program order: their independent vector work
 // then overlaps with the start's dependency chain (measured: 9-14 ns per
 // call less than the other order). Inlined into contact_default_v4, which
-// calls the general method out of line (default_body_v4): 0.3-2 ns per call
+// calls the rest out of line (declined_v4): 0.3-2 ns per call
 // faster than a separate function (once inlined together with default_body
 // it measured 8 ns slower).
 PW85_V4_INLINE bool rational_v4(

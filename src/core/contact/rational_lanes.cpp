@@ -3,7 +3,8 @@
 // rational_v4) for eight pairs at once, pair l in lane l of each vector:
 // the screen of the entry (screen.hpp, screen_contact_pair), the seven
 // coefficients (M12)-(M13) in double-double (f_rational_dd.hpp: rdd::terms
-// per adjugate entry, then the sums over the entries), the grid start (M24)
+// per adjugate entry, then the sums over the entries; det_precise for d0,
+// d3 in lanes where their bound fails), the grid start (M24)
 // (start_scan.hpp: the quartics of (M22) by start_lanes.hpp, the coarse and
 // fine grids, scan_interpolate; (M22) itself, start.hpp, for a lane whose
 // root is off the grid), and the Halley iteration (M8) on f_eval_rational

@@ -14,7 +14,10 @@
 // of the problem sits in the coefficients; they are polynomials in the
 // inputs, computed here from exact products (two_prod by FMA) and
 // compensated sums (two_sum), with an error below 32 u^2 times the sum of
-// the absolute values of their terms, which is computed alongside.
+// the absolute values of their terms, which is computed alongside. Where
+// that bound fails for d0 or d3 (a nearly singular Q1 or Q2), det_precise
+// computes the determinant from its exact terms (compensated summation,
+// SumK).
 #pragma once
 
 #include <cmath>
@@ -198,8 +201,9 @@ constexpr int kDetTerms = 20;
 // (u = 2^-53, gamma_n = n u / (1 - n u); gamma_38^3 < 2^-143). Accepted
 // (mask true) when res > 2^-1000 (the two_prod of terms below 2^-917 may
 // lose bits to underflow: at most 2^-1069 in all, below 2^-69 res) and
-// 2^-143 sum |terms| (1 + 2^-47) <= 2^-56 res (the computed sum of
-// |terms|, 19 roundings, is within 2^-47 of the exact one); det is then
+// 2^-143 mp (1 + 2^-47) <= 2^-56 res, mp the computed sum of |hh| + |ll|
+// over the products (ten roundings; the other two parts of each product
+// are below u times these, so mp (1 + 2^-47) >= sum |terms|); det is then
 // within (2^-53 + 2^-56 + 2^-70) det < 1.13 u. T = double (one pair,
 // rational_coefficients_dd) or __m512d (one pair per lane,
 // contact/rational_lanes.cpp), the same IEEE operations in each lane.
@@ -233,7 +237,8 @@ PW85_V4_INLINE lanes::MaskOf<T> det_precise(T const q[6], T &det) noexcept {
 }
 
 // Computes the seven coefficients, times out.scale, into out.c[0..6]
-// (out.c[7] = 0). Returns false when one is not positive or its bound
+// (out.c[7] = 0), and in out.ok the bits of those that pass their test
+// (rational_dets_precise below). Returns false when one is not positive or its bound
 // 32 u^2 (sum of |terms|) exceeds 2^-56 times it; otherwise each is within
 // 2.2 u of its exact value times out.scale (the double-double error, then
 // the rounding to double; d0 and d3, formed as tr(adj(Q) Q) / 3, one more
