@@ -149,18 +149,18 @@ PW85_V4_INLINE M8 coefficients(Vec3L<W> const &r, SymL<W> const &a, SymL<W> cons
       ok &= okj;
   }
   // d0 and d3 where their bound fails: det_precise, as in
-  // rational_coefficients_dd.
+  // rational_dets_precise (all eight lanes, when one needs it).
   SymL<W> const *const qs[2] = {&a, &b};
-  for (int m = 0; m < 2; ++m) {
-    if (okd[m] != 0xFF) {
+  for (int mat = 0; mat < 2; ++mat) {
+    if (okd[mat] != 0xFF) {
       __m512d q[kSym], det;
-      for (int i = 0; i < kSym; ++i) q[i] = (*qs[m])[i];
-      __mmask8 const take = static_cast<__mmask8>(~okd[m]) & to_bits(det_precise(q, det));
-      int const j = m == 0 ? 3 : 6;
+      for (int i = 0; i < kSym; ++i) q[i] = (*qs[mat])[i];
+      __mmask8 const take = static_cast<__mmask8>(~okd[mat]) & to_bits(det_precise(q, det));
+      int const j = mat == 0 ? 3 : 6;
       out.c[j] = _mm512_mask_blend_pd(take, out.c[j], det * scale);
-      okd[m] |= take;
+      okd[mat] |= take;
     }
-    ok &= okd[m];
+    ok &= okd[mat];
   }
   return from_bits(ok);
 }
