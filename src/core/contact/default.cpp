@@ -1,8 +1,9 @@
 // PW85_METHOD_DEFAULT (docs/methods.md, section "DEFAULT"). On x86-64-v4,
 // first the rational step
 // (rational_iterate below: f from its seven coefficients in double-double,
-// f_rational_dd.hpp), from the grid start (M24) (start_scan.hpp); when it
-// declines, and on other CPUs:
+// f_rational_dd.hpp), from the grid start (M24) (start_scan.hpp); where
+// only d0 or d3 failed its bound, the same step again with those two from
+// det_precise (declined_v4); when it declines, and on other CPUs:
 //  0. from the start (M22) (start.hpp: Newton on the fixed-point equation of
 //     (M19) in logarithmic coordinates), a safeguarded
 //     Halley iteration as NEWTON's (newton.cpp) but with f and its
@@ -386,7 +387,7 @@ PW85_ALWAYS_INLINE bool rational_iterate(RationalDD const &k, double lambda0,
 // coefficients come first in program order: their independent vector work
 // then overlaps with the start's dependency chain (measured: 9-14 ns per
 // call less than the other order). Inlined into contact_default_v4, which
-// calls the general method out of line (default_body_v4): 0.3-2 ns per call
+// calls the rest out of line (declined_v4): 0.3-2 ns per call
 // faster than a separate function (once inlined together with default_body
 // it measured 8 ns slower).
 PW85_V4_INLINE bool rational_v4(
@@ -398,6 +399,20 @@ PW85_V4_INLINE bool rational_v4(
   return coef_ok && rational_iterate(k, lambda0, res);
 }
 
+// The rational step again where d0 or d3 failed its bound (cancellation
+// beyond 2^45: 18 % of bench_contact's class-3 pairs), with those two from
+// det_precise (f_rational_dd.hpp). False where rational_v4 declined for
+// another reason.
+PW85_V4_INLINE bool rational_precise_v4(
+    Vec3 const &r, Sym3 const &q1, Sym3 const &q2, MethodResult &res) noexcept {
+  RationalDD k;
+  if (rational_coefficients_dd(r, q1, q2, k) || !rational_dets_precise(q1, q2, k))
+    return false;
+  double lambda0 = scan_start(r, q1, q2);
+  if (lambda0 < 0.0) lambda0 = default_start(r, q1, q2);
+  return rational_iterate(k, lambda0, res);
+}
+
 // The general method compiled for x86-64-v4, from its own start (M22), with
 // the same IEEE operations as the baseline (-ffp-contract=off,
 // src/meson.build). Out of line: inlined into
@@ -406,6 +421,17 @@ PW85_V4_INLINE bool rational_v4(
 PW85_TARGET_V4 __attribute__((noinline)) Status default_body_v4(
     Vec3 const &r, Sym3 const &q1, Sym3 const &q2, MethodResult &res) noexcept {
   return default_body(r, q1, q2, res);
+}
+
+// After rational_v4 declined: rational_precise_v4, then the general method.
+// A separate function that recomputes the coefficients and the start:
+// rational_precise_v4 called from rational_v4 with its coefficients (inline
+// or not) made the one-pair DEFAULT call 13 ns slower in classes 0-2 of
+// bench_batch (87 -> 100 ns), where it never runs.
+PW85_TARGET_V4 __attribute__((noinline)) Status declined_v4(
+    Vec3 const &r, Sym3 const &q1, Sym3 const &q2, MethodResult &res) noexcept {
+  if (rational_precise_v4(r, q1, q2, res)) return kOk;
+  return default_body_v4(r, q1, q2, res);
 }
 #endif
 
@@ -418,7 +444,7 @@ PW85_TARGET_V4 Status contact_default_v4(Vec3 const &r, Sym3 const &q1, Sym3 con
                                          MethodResult &res) noexcept {
   res.method = kMethodDefault;
   if (rational_v4(r, q1, q2, res)) return kOk;
-  return default_body_v4(r, q1, q2, res);
+  return declined_v4(r, q1, q2, res);
 }
 
 PW85_TARGET_V4 Status contact_default_general_v4(Vec3 const &r, Sym3 const &q1,

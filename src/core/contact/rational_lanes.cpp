@@ -3,7 +3,8 @@
 // rational_v4) for eight pairs at once, pair l in lane l of each vector:
 // the screen of the entry (screen.hpp, screen_contact_pair), the seven
 // coefficients (M12)-(M13) in double-double (f_rational_dd.hpp: rdd::terms
-// per adjugate entry, then the sums over the entries), the grid start (M24)
+// per adjugate entry, then the sums over the entries; det_precise for d0,
+// d3 in lanes where their bound fails), the grid start (M24)
 // (start_scan.hpp: the quartics of (M22) by start_lanes.hpp, the coarse and
 // fine grids, scan_interpolate; (M22) itself, start.hpp, for a lane whose
 // root is off the grid), and the Halley iteration (M8) on f_eval_rational
@@ -137,12 +138,29 @@ PW85_V4_INLINE M8 coefficients(Vec3L<W> const &r, SymL<W> const &a, SymL<W> cons
   M8 const bits = reinterpret_cast<M8>(tr);
   M8 const e = ((bits >> 52) & 0x7FF) - 1023;
   V8 const scale = reinterpret_cast<V8>((1023 - 3 * e) << 52);
-  __mmask8 ok = 0xFF;
+  __mmask8 ok = 0xFF, okd[2] = {0xFF, 0xFF};
   for (int j = 0; j < 7; ++j) {
     double const third = j == 3 || j == 6 ? kThird : 1.0;
     __mmask8 okj;
     out.c[j] = finish(add(s0123[j], v[j]), m0123[j] + m[j], bc(third) * scale, okj);
-    ok &= okj;
+    if (j == 3 || j == 6)
+      okd[j == 6] = okj;
+    else
+      ok &= okj;
+  }
+  // d0 and d3 where their bound fails: det_precise, as in
+  // rational_dets_precise (all eight lanes, when one needs it).
+  SymL<W> const *const qs[2] = {&a, &b};
+  for (int mat = 0; mat < 2; ++mat) {
+    if (okd[mat] != 0xFF) {
+      __m512d q[kSym], det;
+      for (int i = 0; i < kSym; ++i) q[i] = (*qs[mat])[i];
+      __mmask8 const take = static_cast<__mmask8>(~okd[mat]) & to_bits(det_precise(q, det));
+      int const j = mat == 0 ? 3 : 6;
+      out.c[j] = _mm512_mask_blend_pd(take, out.c[j], det * scale);
+      okd[mat] |= take;
+    }
+    ok &= okd[mat];
   }
   return from_bits(ok);
 }

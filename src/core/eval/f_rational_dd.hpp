@@ -14,7 +14,10 @@
 // of the problem sits in the coefficients; they are polynomials in the
 // inputs, computed here from exact products (two_prod by FMA) and
 // compensated sums (two_sum), with an error below 32 u^2 times the sum of
-// the absolute values of their terms, which is computed alongside.
+// the absolute values of their terms, which is computed alongside. Where
+// that bound fails for d0 or d3 (a nearly singular Q1 or Q2), det_precise
+// computes the determinant from its exact terms (compensated summation,
+// SumK).
 #pragma once
 
 #include <cmath>
@@ -36,6 +39,7 @@ namespace pw85 {
 struct RationalDD {
   double c[8];
   double scale;
+  unsigned ok;  // bit j: coefficient j passed its test (rational_coefficients_dd)
 };
 
 #if PW85_ISA_LEVELS
@@ -150,6 +154,9 @@ PW85_V4_INLINE void terms(__m512d pa, __m512d qa, __m512d sa, __m512d ta, __m512
 
 constexpr double kThird = 1.0 / 3.0;
 
+// The bits of the coefficients other than d0 (bit 3) and d3 (bit 6).
+constexpr unsigned kRatNotDet = 0x37;
+
 // A coefficient from its sum over the adjugate entries t (double-double)
 // and the sum mt of the absolute values of its terms: (t.h + t.l) times
 // ts (the scale, times 1/3 for d0 and d3). ok: 32 u^2 mt <= 2^-56 (the sum),
@@ -162,10 +169,76 @@ PW85_V4_INLINE __m512d finish(DD t, __m512d mt, __m512d ts, __mmask8 &ok) {
   return _mm512_mul_pd(sum, ts);
 }
 
+// a b - p, one rounding (std::fma: an FMA instruction in the x86-64-v4
+// functions that use this file).
+PW85_V4_INLINE double fms(double a, double b, double p) { return std::fma(a, b, -p); }
+PW85_V4_INLINE __m512d fms(__m512d a, __m512d b, __m512d p) { return _mm512_fmsub_pd(a, b, p); }
+
+// Knuth's two_sum (as above) for T = double or T = __m512d.
+template <class T>
+PW85_V4_INLINE void two_sum_t(T a, T b, T &s, T &e) {
+  s = a + b;
+  T const bb = s - a;
+  e = (a - (s - bb)) + (b - bb);
+}
+
+// Terms of the precise determinant below: n = 20 doubles.
+constexpr int kDetTerms = 20;
+
 }  // namespace rdd
 
+// det Q for d0 = det Q1 or d3 = det Q2 (eq. (M13)) where the double-double
+// sum fails its bound (cancellation beyond 2^45 of the terms: in
+// bench_contact's class 3, 18 % of the pairs, by up to 2^75). By the
+// cofactor expansion
+//   det Q = q00 q11 q22 - q00 q12^2 - q01^2 q22 + 2 q01 q02 q12 - q02^2 q11,
+// each product of three doubles written exactly as four doubles (two_prod
+// by FMA, then each part times the third factor), the 20 terms summed by
+// SumK with K = 3 (Ogita, Rump and Oishi, "Accurate sum and dot product",
+// SIAM J. Sci. Comput. 26(6), 2005: two passes of error-free VecSum, then
+// the plain sum), whose result satisfies
+//   |res - det| <= (u + 3 gamma_19^2) |det| + gamma_38^3 sum |terms|
+// (u = 2^-53, gamma_n = n u / (1 - n u); gamma_38^3 < 2^-143). Accepted
+// (mask true) when res > 2^-1000 (the two_prod of terms below 2^-917 may
+// lose bits to underflow: at most 2^-1069 in all, below 2^-69 res) and
+// 2^-143 mp (1 + 2^-47) <= 2^-56 res, mp the computed sum of |hh| + |ll|
+// over the products (ten roundings; the other two parts of each product
+// are below u times these, so mp (1 + 2^-47) >= sum |terms|); det is then
+// within (2^-53 + 2^-56 + 2^-70) det < 1.13 u. T = double (one pair,
+// rational_coefficients_dd) or __m512d (one pair per lane,
+// contact/rational_lanes.cpp), the same IEEE operations in each lane.
+template <class T>
+PW85_V4_INLINE lanes::MaskOf<T> det_precise(T const q[6], T &det) noexcept {
+  using rdd::fms;
+  using rdd::two_sum_t;
+  using lanes::vabs;
+  T p[rdd::kDetTerms];
+  // Products x y z with their signs (storage order 00 01 02 11 12 22).
+  T const x[5] = {q[0], q[0], q[1], q[1] + q[1], q[2]};
+  T const y[5] = {q[3], q[4], q[1], q[2], q[2]};
+  T const z[5] = {q[5], -q[4], -q[5], q[4], -q[3]};
+  T mp = T{} + 0.0;
+  for (int i = 0; i < 5; ++i) {
+    T const h = x[i] * y[i], l = fms(x[i], y[i], h);
+    T const hh = h * z[i], ll = l * z[i];
+    p[4 * i] = hh;
+    p[4 * i + 1] = fms(h, z[i], hh);
+    p[4 * i + 2] = ll;
+    p[4 * i + 3] = fms(l, z[i], ll);
+    mp = mp + (vabs(hh) + vabs(ll));
+  }
+  // SumK, K = 3: two VecSum passes (error-free: the exact sum is kept).
+  for (int k = 0; k < 2; ++k)
+    for (int i = 1; i < rdd::kDetTerms; ++i) two_sum_t(p[i], p[i - 1], p[i], p[i - 1]);
+  T s = p[0];
+  for (int i = 1; i < rdd::kDetTerms - 1; ++i) s = s + p[i];
+  det = s + p[rdd::kDetTerms - 1];
+  return (det > 0x1p-1000) & (mp * (0x1p-87 * (1.0 + 0x1p-47)) <= det);
+}
+
 // Computes the seven coefficients, times out.scale, into out.c[0..6]
-// (out.c[7] = 0). Returns false when one is not positive or its bound
+// (out.c[7] = 0), and in out.ok the bits of those that pass their test
+// (rational_dets_precise below). Returns false when one is not positive or its bound
 // 32 u^2 (sum of |terms|) exceeds 2^-56 times it; otherwise each is within
 // 2.2 u of its exact value times out.scale (the double-double error, then
 // the rounding to double; d0 and d3, formed as tr(adj(Q) Q) / 3, one more
@@ -227,7 +300,26 @@ PW85_V4_INLINE bool rational_coefficients_dd(
   __m512d const coef = finish(t, mt, _mm512_mul_pd(third, _mm512_set1_pd(scale)), ok);
   _mm512_storeu_pd(out.c, coef);
   out.scale = scale;
-  return (ok & 0x7F) == 0x7F;
+  out.ok = ok & 0x7F;
+  return out.ok == 0x7F;
+}
+
+// After rational_coefficients_dd declined (out.ok: the coefficients that
+// passed): true when a0, a1, a2, d1, d2 passed and det_precise accepts d0
+// and d3 where they failed (out.c[3], out.c[6]: det Q1, det Q2 times
+// out.scale, within 1.13 u).
+PW85_V4_INLINE bool rational_dets_precise(Sym3 const &q1, Sym3 const &q2,
+                                          RationalDD &out) noexcept {
+  if ((out.ok & rdd::kRatNotDet) != rdd::kRatNotDet) return false;
+  Sym3 const *const qs[2] = {&q1, &q2};
+  for (int m = 0; m < 2; ++m) {
+    int const j = m == 0 ? 3 : 6;
+    if (out.ok & (1u << j)) continue;
+    double det;
+    if (!det_precise(qs[m]->a, det)) return false;
+    out.c[j] = det * out.scale;
+  }
+  return true;
 }
 
 #endif
