@@ -28,7 +28,9 @@
 // and reported the same way. Threads (--threads-n T, default 10^6; 0
 // skips): T class-0 pairs, the two pairs calls on 1 and 2 threads
 // alternately, wall clock; speed-up = median of the ratios of consecutive
-// 1- and 2-thread passes (min, max). --callgrind C F: only function F of
+// 1- and 2-thread passes (min, max); controls of what the machine offers: a
+// read of the pairs' 15 doubles and the two one-pair loops, on one thread
+// and split in two halves on two std::threads. --callgrind C F: only function F of
 // class C (0 loop pw85_overlap, 1 pw85_overlap_pairs, 2 loop DEFAULT, 3
 // pw85_contact_function_pairs DEFAULT) once over its --class-n pairs, in
 // run_once, for instruction counts (docs/batch.md):
@@ -40,6 +42,7 @@
 #include <cstring>
 #include <functional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <time.h>
@@ -305,9 +308,40 @@ int main(int argc, char **argv) {
     struct Th {
       char const *name;
       std::function<void(int)> run;
-    } const th[2] = {
+    };
+    // Controls (what the machine offers): the one-pair loop over the same
+    // pairs, on one thread, or split in two halves on two std::threads.
+    auto halves = [&](int t, std::function<void(int, int)> const &loop) {
+      if (t == 1) return loop(0, mt);
+      std::thread other(loop, 0, mt / 2);
+      loop(mt / 2, mt);
+      other.join();
+    };
+    auto overlap_loop = [&](int k0, int k1) {
+      for (int k = k0; k < k1; ++k)
+        o[k] = pw85_overlap(&tr[3 * k], &tq1[6 * k], &tq2[6 * k]);
+    };
+    auto default_loop = [&](int k0, int k1) {
+      for (int k = k0; k < k1; ++k)
+        pw85_contact_function_method(&tr[3 * k], &tq1[6 * k], &tq2[6 * k], PW85_METHOD_DEFAULT,
+                                     &f[k]);
+    };
+    // Reads the pairs' 15 doubles (the memory traffic of a pairs call).
+    std::vector<double> sums(2);
+    auto read_loop = [&](int k0, int k1) {
+      double a = 0.0;
+      for (int k = k0; k < k1; ++k) {
+        for (int i = 0; i < 3; ++i) a += tr[3 * k + i];
+        for (int i = 0; i < 6; ++i) a += tq1[6 * k + i] + tq2[6 * k + i];
+      }
+      sums[k0 == 0 ? 0 : 1] = a;
+    };
+    Th const th[5] = {
+        {"control: read the arrays, std::threads", [&](int t) { halves(t, read_loop); }},
         {"pw85_overlap_pairs", [&](int t) { pw85_overlap_pairs(mt, tr.data(), tq1.data(), tq2.data(), o.data(), nullptr, t); }},
+        {"control: loop pw85_overlap, std::threads", [&](int t) { halves(t, overlap_loop); }},
         {"pw85_contact_function_pairs DEFAULT", [&](int t) { pw85_contact_function_pairs(mt, tr.data(), tq1.data(), tq2.data(), PW85_METHOD_DEFAULT, f.data(), nullptr, t); }},
+        {"control: loop DEFAULT, std::threads", [&](int t) { halves(t, default_loop); }},
     };
     std::printf("%-46s %9s %9s %9s %7s %7s %7s\n", "threads, class 0", "1t_ns", "2t_ns", "", "speedup", "s_min", "s_max");
     std::fprintf(csv, "# threads: %d class-0 pairs, wall clock\nfunction,ns_1thread,ns_2threads,speedup_median,speedup_min,speedup_max\n", mt);

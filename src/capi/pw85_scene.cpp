@@ -184,22 +184,27 @@ void overlap_block(long long k0, Pair pair, int *overlap, int res[]) noexcept {
   }
 }
 
+// Pairs per dynamic OpenMP chunk of the lane loops, each chunk ~20 us of
+// work on one thread: smaller chunks (256 and 64) gave 1.60-1.65 and
+// 1.76-1.78 times one thread's speed on two threads, these 1.61-1.83 and
+// 1.80-1.82 (10^6 class-0 pairs, build/bench/bench_batch, rows "threads").
+constexpr int kOverlapChunk = 2048, kDefaultChunk = 512;
+
 // The loop of the overlap calls: run_blocks over blocks of
 // overlap_lanes_width() pairs through overlap_block (pair as there), one(k)
 // for the rest and the returned status.
 template <class Pair, class One>
 int run_overlap(long long m, int *status, int nthreads, Pair pair, int *overlap,
                 One one) noexcept {
-  constexpr int kChunk = 256;
   if (pw85::overlap_lanes_width() == pw85::kOverlapLanesV4)
     return run_blocks<pw85::kOverlapLanesV4>(
-        m, status, nthreads, kChunk,
+        m, status, nthreads, kOverlapChunk,
         [&](long long k0, int res[]) noexcept {
           overlap_block<pw85::kOverlapLanesV4>(k0, pair, overlap, res);
         },
         one);
   return run_blocks<pw85::kOverlapLanes>(
-      m, status, nthreads, kChunk,
+      m, status, nthreads, kOverlapChunk,
       [&](long long k0, int res[]) noexcept {
         overlap_block<pw85::kOverlapLanes>(k0, pair, overlap, res);
       },
@@ -574,7 +579,7 @@ int pw85_contact_function_pairs(long long m, double const *r12, double const *q1
         },
         res, st);
   };
-  return run_blocks<pw85::kDefaultLanes>(m, status, nthreads, 64, block, one);
+  return run_blocks<pw85::kDefaultLanes>(m, status, nthreads, kDefaultChunk, block, one);
 }
 
 int pw85_contact_pairs(long long m, double const *r12, double const *q1, double const *q2,
@@ -643,7 +648,7 @@ int pw85_scene_contact_function(long long n, double const *centres, double const
         },
         res, st);
   };
-  return run_blocks<pw85::kDefaultLanes>(m, status, nthreads, 64, block, one);
+  return run_blocks<pw85::kDefaultLanes>(m, status, nthreads, kDefaultChunk, block, one);
 }
 
 int pw85_contact_derivatives_pairs(long long m, double const *r12, double const *q1,
