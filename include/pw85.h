@@ -663,7 +663,7 @@ PW85_API int pw85_scene_contact_derivatives(long long n, double const *centres,
  * (0, t_max] and mu^2(0) > 1 + 1e-14; trajectories whose minimum of mu^2
  * lies in [1 - 2.3e-13, 1] may go either way. *t is a crossing of
  * mu^2 = 1, refined beyond double precision where needed (measured within
- * 3e-12 t_max of t_c at grazing crossings of 1 - 1e-12, 2.5e-11 with the
+ * 6e-12 t_max of t_c at grazing crossings of 1 - 1e-12, 2.5e-11 with the
  * rounding of Q_i(t) when rotating; docs/contact_time.md). Returns PW85_OK,
  * PW85_ERR_INVALID_ARGUMENT (NULL, NaN or infinite value, t_max <= 0, or
  * r12 + t v12 or t w_i overflowing within the horizon; *t is NaN),
