@@ -54,9 +54,9 @@ PW85_V4_INLINE __mmask8 to_bits(M8 m) noexcept {
 // (kSafeLo, kSafeHi), written as "every |x| < kSafeHi and some |x| >
 // kSafeLo" (the same for finite values; a NaN or an infinite value fails
 // both forms), and the L D L^T pivots of ldl_pivots_positive, with its IEEE
-// operations. In place of screen_contact_pair lane by lane: measured 7 %
-// less time per pair in classes 0-2, 2.5 % in class 3 (A/B runs of the two
-// builds, pw85_contact_function_pairs on bench_batch's pairs).
+// operations. Against screen_contact_pair lane by lane: 7 % less time per
+// pair in classes 0-2, 2.5 % in class 3 (pw85_contact_function_pairs on
+// bench_batch's pairs, runs alternating the two builds).
 PW85_V4_INLINE M8 screen_lanes(Vec3L<W> const &r, SymL<W> const &q1,
                                SymL<W> const &q2) noexcept {
   M8 in = (vabs(r[0]) < kSafeHi) & (vabs(r[1]) < kSafeHi) & (vabs(r[2]) < kSafeHi) &
@@ -183,11 +183,11 @@ PW85_V4_INLINE V8 grid_start(Vec3L<W> const &r, SymL<W> const &q1, SymL<W> const
   V8 xa{};
   // The points in groups of kCoarseGroup, evaluated before their masks
   // are taken in order (a lane found at a point ignores the later ones, so
-  // k and xa are those of the point-by-point scan). Groups of 4 in place of
-  // one point per test of found: measured 2.2 / 3.7 / 3.9 / 1.3 % less time
-  // per pair in classes 0-3; groups of 2: 0-0.8 %; of 8: 3-5 % more, of 16:
-  // 4-6 % more (pw85_contact_function_pairs over the one-pair loop, medians
-  // of 6 alternating A/B runs of build/bench/bench_batch --n 100000 --reps 5).
+  // k and xa are those of the point-by-point scan). Groups of 4 against one
+  // point per test of found: 2.2 / 3.7 / 3.9 / 1.3 % less time per pair in
+  // classes 0-3; groups of 2: 0-0.8 %; of 8: 3-5 % more, of 16: 4-6 % more
+  // (pw85_contact_function_pairs over the one-pair loop, medians of 6 runs
+  // alternating the builds, build/bench/bench_batch --n 100000 --reps 5).
   constexpr int kCoarseGroup = 4;
   static_assert(32 % kCoarseGroup == 0, "whole groups");
   for (int i0 = 0; i0 < 32 && found != 0xFF; i0 += kCoarseGroup) {
@@ -210,10 +210,10 @@ PW85_V4_INLINE V8 grid_start(Vec3L<W> const &r, SymL<W> const &q1, SymL<W> const
   // = xa * 1 is the coarse point k - 1, whose value, the same operations
   // on the same x, was positive. Then x1 = x_(j-1), x2 = x_j and n1, n2
   // there, the same products and the same sextic as at the grid points.
-  // In place of carrying n1, n2, x1, x2 through the loop by four blends
-  // per point and evaluating points 0 and 15: measured 1.8 / 2.6 / 2.6 /
-  // 1.7 % less time per pair in classes 0-3 (pw85_contact_function_pairs
-  // over the one-pair loop, medians of 7 alternating A/B runs of
+  // Against carrying n1, n2, x1, x2 through the loop by four blends per
+  // point and evaluating points 0 and 15: 1.8 / 2.6 / 2.6 / 1.7 % less time
+  // per pair in classes 0-3 (pw85_contact_function_pairs over the one-pair
+  // loop, medians of 7 runs alternating the builds,
   // build/bench/bench_batch --n 100000 --reps 5).
   __m512i jv = _mm512_set1_epi64(15);
   found = static_cast<__mmask8>(~on_grid);
