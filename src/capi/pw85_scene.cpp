@@ -78,6 +78,24 @@ inline void prefetch_pair(long long n, double const *centres, double const *q,
   prefetch(q + 6 * j + 5);
 }
 
+// Software prefetch of the per-pair arrays of the 8 pairs k0 + kAhead ...
+// k0 + kAhead + 7 (lines of 8 doubles), once per 8 pairs of
+// pw85_overlap_pairs: two threads on 10^6 class-0 pairs gave 1.86-1.90
+// times one thread's speed with it, 1.76-1.81 without (and one thread
+// 3 % faster); DEFAULT, 4 times slower per pair, gained nothing
+// (build/bench/bench_batch, rows "threads", runs alternating the builds).
+inline void prefetch_arrays(long long m, double const *r12, double const *q1,
+                            double const *q2, long long k0) noexcept {
+  constexpr long long kAhead = 64;
+  long long const k = k0 + kAhead;
+  if (k + 8 > m) return;
+  for (int i = 0; i < 24; i += 8) prefetch(r12 + 3 * k + i);
+  for (int i = 0; i < 48; i += 8) {
+    prefetch(q1 + 6 * k + i);
+    prefetch(q2 + 6 * k + i);
+  }
+}
+
 // Number of OpenMP threads of a batch call of m > 0 pairs: nthreads (0: the
 // OpenMP default), at most omp_get_num_procs() and at most m. An unbounded
 // request would make the OpenMP runtime create that many threads, which
@@ -546,6 +564,7 @@ int pw85_overlap_pairs(long long m, double const *r12, double const *q1, double 
   };
   auto pair = [&](long long k, double *, double const *&r, double const *&a,
                   double const *&b) noexcept {
+    if (k % 8 == 0) prefetch_arrays(m, r12, q1, q2, k);
     r = r12 + 3 * k;
     a = q1 + 6 * k;
     b = q2 + 6 * k;
