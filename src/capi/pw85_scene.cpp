@@ -498,6 +498,21 @@ inline int scene_r12(long long n, double const *centres, double const *q, Box co
   return PW85_OK;
 }
 
+// Pair k of a scene for the lane blocks (overlap_block, default_block):
+// r12 into buf (r points to it), a and b to its matrices; false: the pair
+// failed scene_r12.
+inline bool scene_pair(long long n, double const *centres, double const *q, Box const &box,
+                       long long const *pairs, long long m, long long k, double *buf,
+                       double const *&r, double const *&a, double const *&b) noexcept {
+  prefetch_pair(n, centres, q, pairs, m, k);
+  long long i, j;
+  r = buf;
+  if (scene_r12(n, centres, q, box, pairs, k, buf, i, j) != PW85_OK) return false;
+  a = q + 6 * i;
+  b = q + 6 * j;
+  return true;
+}
+
 // The loop of the pw85_scene_* functions after their argument checks:
 // one(k, r12, i, j) computes pair k (r12 == nullptr: the pair failed
 // scene_r12) and returns its status.
@@ -529,13 +544,7 @@ int scene_overlap(long long n, double const *centres, double const *q, Box const
   };
   auto pair = [&](long long k, double *buf, double const *&r, double const *&a,
                   double const *&b) noexcept {
-    prefetch_pair(n, centres, q, pairs, m, k);
-    long long i, j;
-    r = buf;
-    if (scene_r12(n, centres, q, box, pairs, k, buf, i, j) != PW85_OK) return false;
-    a = q + 6 * i;
-    b = q + 6 * j;
-    return true;
+    return scene_pair(n, centres, q, box, pairs, m, k, buf, r, a, b);
   };
   return run_overlap(m, status, nthreads, pair, overlap, one);
 }
@@ -657,13 +666,7 @@ int pw85_scene_contact_function(long long n, double const *centres, double const
         k0,
         [&](long long k, double *buf, double const *&r, double const *&a,
             double const *&c) noexcept {
-          prefetch_pair(n, centres, q, pairs, m, k);
-          long long i, j;
-          r = buf;
-          if (scene_r12(n, centres, q, b, pairs, k, buf, i, j) != PW85_OK) return false;
-          a = q + 6 * i;
-          c = q + 6 * j;
-          return true;
+          return scene_pair(n, centres, q, b, pairs, m, k, buf, r, a, c);
         },
         res, st);
   };
