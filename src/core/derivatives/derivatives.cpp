@@ -34,6 +34,9 @@
 #include "common/isa.hpp"
 #include "contact/contact.hpp"
 #include "derivatives/fast.hpp"
+#if PW85_ISA_LEVELS
+#include "derivatives/adjugate.hpp"
+#endif
 #include "eval/f_dd.hpp"
 
 namespace pw85 {
@@ -157,15 +160,22 @@ PW85_ALWAYS_INLINE bool at_lambda(double lambda, Vec3 const &r, Sym3 const &q1, 
 // FMA (F = true) or Dekker's product;
 // in_range: every magnitude inside (kSafeLo, kSafeHi) and r != 0, so that
 // DEFAULT is called without the dispatcher's checks (contact.hpp).
-template <bool F>
-PW85_ALWAYS_INLINE Status derivatives_impl(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                           bool in_range, Derivatives &d) noexcept {
-  static_assert(sizeof(Derivatives) == 29 * sizeof(double), "plain struct of 29 doubles");
-  MethodResult res;
+// DEFAULT's solution (status, res), with `solved` its test below.
+inline Status solve_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, bool in_range,
+                            MethodResult &res, bool &solved) noexcept {
   Status const status = in_range ? contact_method_in_range(kMethodDefault, r, q1, q2, res)
                                   : contact_method(kMethodDefault, r, q1, q2, res);
+  solved = (status == kOk || status == kInaccurate) && res.lambda > 0.0 && res.lambda < 1.0;
+  return status;
+}
+
+// The derivatives from DEFAULT's solution: (E8), otherwise (E7).
+template <bool F>
+PW85_ALWAYS_INLINE Status derivatives_from(Status status, MethodResult const &res, bool solved,
+                                           Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                           Derivatives &d) noexcept {
+  static_assert(sizeof(Derivatives) == 29 * sizeof(double), "plain struct of 29 doubles");
   double lambda = res.lambda;
-  bool const solved = (status == kOk || status == kInaccurate) && lambda > 0.0 && lambda < 1.0;
   // (E8): most pairs; otherwise the refined path (E7) below.
   if (solved && fastd::fast_derivatives<F>(lambda, res.mu2, r, q1, q2, d)) return status;
   double const nan = std::numeric_limits<double>::quiet_NaN();
@@ -299,6 +309,15 @@ PW85_ALWAYS_INLINE Status derivatives_impl(Vec3 const &r, Sym3 const &q1, Sym3 c
   }
 }
 
+template <bool F>
+PW85_ALWAYS_INLINE Status derivatives_impl(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                           bool in_range, Derivatives &d) noexcept {
+  MethodResult res;
+  bool solved;
+  Status const status = solve_default(r, q1, q2, in_range, res, solved);
+  return derivatives_from<F>(status, res, solved, r, q1, q2, d);
+}
+
 #if PW85_ISA_FMA
 PW85_TARGET_FMA Status derivatives_fma(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                                        bool in_range, Derivatives &d) noexcept {
@@ -306,8 +325,31 @@ PW85_TARGET_FMA Status derivatives_fma(Vec3 const &r, Sym3 const &q1, Sym3 const
 }
 #endif
 
+#if PW85_ISA_LEVELS
+// (E8) and (E7) after (E9) declined, out of line: inlined, they made
+// derivatives_v4 save and restore registers on every call.
+PW85_TARGET_V4 __attribute__((noinline)) Status derivatives_from_v4(
+    Status status, MethodResult const &res, bool solved, Vec3 const &r, Sym3 const &q1,
+    Sym3 const &q2, Derivatives &d) noexcept {
+  return derivatives_from<true>(status, res, solved, r, q1, q2, d);
+}
+
+// x86-64-v4: (E9) first (adjugate.hpp).
+PW85_TARGET_V4 Status derivatives_v4(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                     bool in_range, Derivatives &d) noexcept {
+  MethodResult res;
+  bool solved;
+  Status const status = solve_default(r, q1, q2, in_range, res, solved);
+  if (solved && adjd::adjugate_derivatives(res.lambda, res.mu2, r, q1, q2, d)) return status;
+  return derivatives_from_v4(status, res, solved, r, q1, q2, d);
+}
+#endif
+
 inline Status derivatives_dispatch(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                                    bool in_range, Derivatives &d) noexcept {
+#if PW85_ISA_LEVELS
+  if (isa::has_v4()) return derivatives_v4(r, q1, q2, in_range, d);
+#endif
 #if PW85_ISA_FMA
   if (isa::has_fma()) return derivatives_fma(r, q1, q2, in_range, d);
 #endif
