@@ -33,18 +33,18 @@
 namespace pw85 {
 namespace adjd {
 
-// The kernel's results rounded to double (lanes of the vectors below),
+// The kernel's results rounded to double, in the lanes of AVX-512 vectors,
 // with bounds on their errors.
 struct Values {
-  double c[8];     // C = adj Q(lambda), lanes 0-5 (storage order of Sym3)
-  double ub[8];    // U = C r in lanes 0-2, B = det Q(lambda) in lane 3
-  double t[8];     // T1 = Q1 U in lanes 0-2, T2 = Q2 U in lanes 3-5
-  double cw[8];    // C W in lanes 0-2
-  double dots[8];  // F = U.W (= f' B^2) in lane 0, A = T1.(C T2) (= a2 B^3) in lane 3
-  double f_err;    // bound on the error of F
-  double rel_s;    // relative error bounds (max norm) of C, U, B together,
-  double rel_t;    // of T1 and T2,
-  double rel_h;    // of C W and of A
+  __m512d c;     // C = adj Q(lambda), lanes 0-5 (storage order of Sym3)
+  __m512d ub;    // U = C r in lanes 0-2, B = det Q(lambda) in lane 3
+  __m512d t;     // T1 = Q1 U in lanes 0-2, T2 = Q2 U in lanes 3-5
+  __m512d cw;    // C W in lanes 0-2
+  __m512d dots;  // F = U.W (= f' B^2) in lane 0, A = T1.(C T2) (= a2 B^3) in lane 3
+  double f_err;  // bound on the error of F
+  double rel_s;  // relative error bounds (max norm) of C, U, B together,
+  double rel_t;  // of T1 and T2,
+  double rel_h;  // of C W and of A
 };
 
 // Bound on the error of the double-double evaluation, in units of the
@@ -72,6 +72,42 @@ PW85_V4_INLINE __m512d triple_max(__m512d v) {
   __m512d const b = idx_perm(a, _mm512_setr_epi64(1, 2, 0, 4, 5, 3, 6, 7));
   __m512d const c = idx_perm(a, _mm512_setr_epi64(2, 0, 1, 5, 3, 4, 6, 7));
   return _mm512_maskz_max_pd(0xFF, a, _mm512_maskz_max_pd(0xFF, b, c));
+}
+
+// Column j of a symmetric matrix in lanes 0-5 (Sym3 order), in lanes 0-2
+// (lanes 3-5: the same again, for two products at once).
+PW85_V4_INLINE __m512i sym_column(int j) {
+  return j == 0 ? _mm512_setr_epi64(0, 1, 2, 0, 1, 2, 6, 6)
+                : j == 1 ? _mm512_setr_epi64(1, 3, 4, 1, 3, 4, 6, 6)
+                         : _mm512_setr_epi64(2, 4, 5, 2, 4, 5, 6, 6);
+}
+
+PW85_V4_INLINE __m512d bcast(__m512d v, int j) { return idx_perm(v, _mm512_set1_epi64(j)); }
+
+// Column j of Q1 (lanes 0-2) and of Q2 (lanes 3-5), from a = Q1, b = Q2 in
+// Sym3 order.
+PW85_V4_INLINE __m512d q_columns(__m512d a, __m512d b, int j) {
+  __m512i const i0 = _mm512_setr_epi64(0, 1, 2, 8, 9, 10, 6, 6);
+  __m512i const i1 = _mm512_setr_epi64(1, 3, 4, 9, 11, 12, 6, 6);
+  __m512i const i2 = _mm512_setr_epi64(2, 4, 5, 10, 12, 13, 6, 6);
+  return _mm512_permutex2var_pd(a, j == 0 ? i0 : j == 1 ? i1 : i2, b);
+}
+
+// Symmetric 3x3 matrix (lanes 0-5) times the vector in lanes 0-2 of v
+// (result in lanes 0-2, and again in 3-5).
+PW85_V4_INLINE __m512d sym_mul(__m512d m, __m512d v) {
+  __m512d acc = _mm512_mul_pd(idx_perm(m, sym_column(0)), bcast(v, 0));
+  acc = _mm512_fmadd_pd(idx_perm(m, sym_column(1)), bcast(v, 1), acc);
+  return _mm512_fmadd_pd(idx_perm(m, sym_column(2)), bcast(v, 2), acc);
+}
+
+// Sum of lanes 0-2 of v.
+PW85_V4_INLINE double sum3(__m512d v) { return (v[0] + v[1]) + v[2]; }
+
+// The largest |v| over lanes 0-5.
+PW85_V4_INLINE double max6(__m512d v) {
+  __m512d const m = triple_max(v);
+  return fastd::max2(m[0], m[3]);
 }
 
 // True when the 29 doubles at p are finite (x - x is 0 for finite x).
@@ -182,11 +218,11 @@ PW85_V4_INLINE void kernel(double lh, double ll, Vec3 const &r, Sym3 const &q1, 
   __m512d const cv = _mm512_add_pd(c.h, c.l), ubv = _mm512_add_pd(ub.h, ub.l);
   __m512d const tv = _mm512_add_pd(t.h, t.l), cwv = _mm512_add_pd(cw.h, cw.l);
   __m512d const dv = _mm512_add_pd(dots.h, dots.l);
-  _mm512_storeu_pd(out.c, cv);
-  _mm512_storeu_pd(out.ub, ubv);
-  _mm512_storeu_pd(out.t, tv);
-  _mm512_storeu_pd(out.cw, cwv);
-  _mm512_storeu_pd(out.dots, dv);
+  out.c = cv;
+  out.ub = ubv;
+  out.t = tv;
+  out.cw = cwv;
+  out.dots = dv;
   // Relative bounds, each group in the max norm: the largest absolute-value
   // polynomial over the largest value (lane by lane over the triples, then
   // C over both triples).
@@ -206,7 +242,7 @@ PW85_V4_INLINE void kernel(double lh, double ll, Vec3 const &r, Sym3 const &q1, 
   out.f_err = kGammaDD * dotsa[0];
   out.rel_s = kGammaDD * fastd::max2(rs[0], rs[3]);
   out.rel_t = kGammaDD * fastd::max2(rt[0], rt[3]);
-  out.rel_h = kGammaDD * fastd::max2(rcw[0], dotsa[3] / std::fabs(out.dots[3]));
+  out.rel_h = kGammaDD * fastd::max2(rcw[0], dotsa[3] / std::fabs(dv[3]));
 }
 
 // Largest relative error bounds of the kernel's values accepted: C, U and B
@@ -216,16 +252,25 @@ constexpr double kMaxRelS = 0x1p-57, kMaxRelT = 0x1p-50, kMaxRelH = 0x1p-26;
 // Largest t2 (relative change of X along dl) for the first-order move of
 // X, h and a2; beyond it, the second pass.
 constexpr double kMaxMove = 0x1p-24;
-constexpr int kSymIndex[kDim][kDim] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
 
 // The derivatives at DEFAULT's maximiser lambda, mu2 its value, as
-// fast_derivatives (fast.hpp): false, out untouched, when an estimate
-// exceeds its bound or a value is not finite.
+// fast_derivatives (fast.hpp), in the lanes of AVX-512 vectors (3-vectors
+// in lanes 0-2, pairs of them in lanes 0-2 and 3-5, symmetric matrices in
+// lanes 0-5). Writes out; returns false when an estimate exceeds its bound
+// or a value is not finite (the caller then writes out by other means).
 PW85_V4_INLINE bool adjugate_derivatives(double lambda, double mu2, Vec3 const &r,
                                          Sym3 const &q1, Sym3 const &q2,
                                          Derivatives &out) noexcept {
-  using namespace fastd;
-  double const mq1 = max_abs6(q1), mq2 = max_abs6(q2);
+  using fastd::max2;
+  __m512d const qa = _mm512_maskz_loadu_pd(0x3F, q1.a), qb = _mm512_maskz_loadu_pd(0x3F, q2.a);
+  double const mq1 = max6(qa), mq2 = max6(qb);
+  __m512d const g[3] = {q_columns(qa, qb, 0), q_columns(qa, qb, 1), q_columns(qa, qb, 2)};
+  __m512i const hi3 = _mm512_setr_epi64(3, 4, 5, 6, 6, 6, 6, 6);
+  // Index vectors of the products s_i s_j, h_i h_j over the stored entries,
+  // and the weights of the stored entries (1 on the diagonal, 2 off it).
+  __m512i const ki = _mm512_setr_epi64(0, 0, 0, 1, 1, 2, 6, 6);
+  __m512i const kj = _mm512_setr_epi64(0, 1, 2, 1, 2, 2, 6, 6);
+  __m512d const wk = _mm512_setr_pd(1.0, 2.0, 2.0, 1.0, 2.0, 1.0, 0.0, 0.0);
   double lh = lambda, ll = 0.0;
   for (int pass = 0; pass < 2; ++pass) {
     Values k;
@@ -235,88 +280,78 @@ PW85_V4_INLINE bool adjugate_derivatives(double lambda, double mu2, Vec3 const &
     double const nu = om.hi + (om.lo - ll);
     double const bb = k.ub[3], ib = 1.0 / bb, ib2 = ib * ib;
     double const aa = k.dots[3], ia = 1.0 / aa, ff = k.dots[0];
-    // Values at lambda: s, Q1 s, Q2 s, x0, X, h = 2 X w, a2 = -f''/2 and
+    // Values at lambda: s, [Q1 s, Q2 s], X, h = 2 X w; a2 = -f''/2,
     // 1 / (2 a2), f'.
-    Vec3 s, q1s, q2s, x0, h;
-    for (int i = 0; i < kDim; ++i) {
-      s[i] = k.ub[i] * ib;
-      q1s[i] = k.t[i] * ib;
-      q2s[i] = k.t[3 + i] * ib;
-      x0[i] = nu * q1s[i];
-      h[i] = 2.0 * (k.cw[i] * ib2);
-    }
-    Sym3 x;
-    for (int i = 0; i < kSym; ++i) x[i] = k.c[i] * ib;
+    __m512d const vib = _mm512_set1_pd(ib);
+    __m512d const sv = _mm512_mul_pd(k.ub, vib), pv = _mm512_mul_pd(k.t, vib);
+    __m512d const xv = _mm512_mul_pd(k.c, vib);
+    __m512d const hv = _mm512_mul_pd(k.cw, _mm512_set1_pd(2.0 * ib2));
     double const a2 = ((aa * ib) * ib) * ib, iha = 0.5 * (((bb * ia) * bb) * bb);
     double const fp = ff * ib2;
-    double const mx = max_abs6(x), ms = max_abs3(s);
+    __m512d const pm = triple_max(pv);
+    double const mx = max6(xv), ms = triple_max(sv)[0], mh = triple_max(hv)[0];
+    double const mq1s = pm[0], mq2s = pm[3];
     // Relative errors of s and X (rounding of the kernel's value, of 1 / B,
     // the product), of h and of a2; absolute error of f'.
     double const es = 3.0 * kU + 2.0 * k.rel_s, eps_x = es;
     double const e_h = 5.0 * kU + k.rel_s + k.rel_h, eps2 = 6.0 * kU + k.rel_s + k.rel_h;
     double const err_fp = (k.f_err + 2.0 * kU * std::fabs(ff)) * ib2 + 4.0 * kU * std::fabs(fp);
     // The step to the root of f' (Newton, (E7)), dl = f' / (2 a2), and the
-    // first-order moves along it, as fast_derivatives.
+    // first-order moves along it, as fast_derivatives: v = X (Q2 s - Q1 s),
+    // s' = -v, x0' = -Q1 s - (1 - lambda) Q1 v, (Q2 s)' = -Q2 v.
     double const dl = 0.5 * ((ff * bb) * ia);
     double const adl = std::fabs(dl);
     double const t2 = 9.0 * adl * mx * (mq1 + mq2);
-    Vec3 const v = multiply(x, Vec3{{q2s[0] - q1s[0], q2s[1] - q1s[1], q2s[2] - q1s[2]}});
-    Vec3 const q1v = multiply(q1, v), q2v = multiply(q2, v);
-    double const mq1s = max_abs3(q1s), mq2s = max_abs3(q2s);
-    double const mv = max_abs3(v);
-    Vec3 const q2s0 = q2s;
-    for (int i = 0; i < kDim; ++i) {
-      s[i] -= v[i] * dl;
-      x0[i] -= (q1s[i] + nu * q1v[i]) * dl;
-      q2s[i] -= q2v[i] * dl;
-    }
+    __m512d const v = sym_mul(xv, _mm512_sub_pd(idx_perm(pv, hi3), pv));
+    __m512d qv = _mm512_mul_pd(g[0], bcast(v, 0));  // [Q1 v, Q2 v]
+    qv = _mm512_fmadd_pd(g[1], bcast(v, 1), qv);
+    qv = _mm512_fmadd_pd(g[2], bcast(v, 2), qv);
+    double const mv = triple_max(v)[0];
+    __m512d const vdl = _mm512_set1_pd(dl);
+    __m512d const sm = _mm512_fnmadd_pd(v, vdl, sv);
+    __m512d const mnu = _mm512_setr_pd(nu, nu, nu, 1.0, 1.0, 1.0, 0.0, 0.0);
+    __m512d const xq =  // [x0, Q2 s] moved
+        _mm512_fnmadd_pd(_mm512_fmadd_pd(mnu, qv, _mm512_maskz_mov_pd(0x07, pv)), vdl,
+                         _mm512_mul_pd(mnu, pv));
     double const lam = lh + (ll + dl), nus = om.hi + ((om.lo - ll) - dl), p = lam * nus;
-    // Written into out directly: when this function returns false, the
-    // caller's other paths write every field.
-    Derivatives &o = out;
-    o.mu2 = mu2;
-    o.lambda = lam;
-    Vec3 g, xr;
-    for (int i = 0; i < kDim; ++i) {
-      g[i] = 2.0 * p * s[i];
-      xr[i] = -lam * q2s[i];  // x0 - r, without the subtraction
-    }
-    Vec3 const c1v = cross(x0, g), c2v = cross(xr, g);
-    for (int i = 0; i < kDim; ++i) {
-      o.d_r12[i] = g[i];
-      o.d_theta1[i] = -c1v[i];
-      o.d_theta2[i] = c2v[i];
-    }
-    static constexpr int kI[kSym] = {0, 0, 0, 1, 1, 2}, kJ[kSym] = {0, 1, 2, 1, 2, 2};
-    double const c1 = -p * nus, c2 = -p * lam;
-    for (int e = 0; e < kSym; ++e) {
-      double const ss = (kI[e] == kJ[e] ? 1.0 : 2.0) * s[kI[e]] * s[kJ[e]];
-      o.d_q1[e] = c1 * ss;
-      o.d_q2[e] = c2 * ss;
-    }
+    double const p2 = 2.0 * p;
+    // Outputs (E1)-(E4): g; -x0 x g and (x0 - r) x g, x0 - r = -lambda Q2 s,
+    // as one cross product of [x0, x0 - r] with [g, g]; (E2).
+    out.mu2 = mu2;
+    out.lambda = lam;
+    __m512d const gv = _mm512_mul_pd(sm, _mm512_set1_pd(p2));
+    _mm512_mask_storeu_pd(out.d_r12, 0x07, gv);
+    __m512d const av = _mm512_mul_pd(xq, _mm512_setr_pd(1.0, 1.0, 1.0, -lam, -lam, -lam, 0.0, 0.0));
+    __m512i const yzx = _mm512_setr_epi64(1, 2, 0, 4, 5, 3, 6, 6);
+    __m512i const zxy = _mm512_setr_epi64(2, 0, 1, 5, 3, 4, 6, 6);
+    __m512i const gyzx = _mm512_setr_epi64(1, 2, 0, 1, 2, 0, 6, 6);
+    __m512i const gzxy = _mm512_setr_epi64(2, 0, 1, 2, 0, 1, 6, 6);
+    __m512d const cr = _mm512_fmsub_pd(idx_perm(av, yzx), idx_perm(gv, gzxy),
+                                       _mm512_mul_pd(idx_perm(av, zxy), idx_perm(gv, gyzx)));
+    _mm512_mask_storeu_pd(out.d_theta1, 0x3F,
+                          _mm512_mul_pd(cr, _mm512_setr_pd(-1.0, -1.0, -1.0, 1.0, 1.0, 1.0, 0.0, 0.0)));
+    __m512d const ss = _mm512_mul_pd(_mm512_mul_pd(idx_perm(sm, ki), idx_perm(sm, kj)), wk);
+    _mm512_mask_storeu_pd(out.d_q1, 0x3F, _mm512_mul_pd(ss, _mm512_set1_pd(-p * nus)));
+    _mm512_mask_storeu_pd(out.d_q2, 0x3F, _mm512_mul_pd(ss, _mm512_set1_pd(-p * lam)));
     // Hessian (E6) from X, h and a2 at lambda (not moved: their relative
     // change along dl is below t2, counted in err_t).
-    double const mh = max_abs3(h);
-    double mhess = 0.0;
-    for (int e = 0; e < kSym; ++e) {
-      o.hess_r12[e] = 2.0 * p * x[e] + h[kI[e]] * h[kJ[e]] * iha;
-      mhess = max2(mhess, std::fabs(o.hess_r12[e]));
-    }
+    __m512d hess = _mm512_fmadd_pd(_mm512_mul_pd(idx_perm(hv, ki), idx_perm(hv, kj)),
+                                   _mm512_set1_pd(iha), _mm512_mul_pd(xv, _mm512_set1_pd(p2)));
+    double mhess = max6(hess);
     // Error estimates of fast_derivatives (max norms; a factor 3 converts
     // to 2-norms), multiplied through by |s| and 2 p: the gradient's, from
     // s, from the move (adl mv / |s| relative, its second-order term times
     // t2, v's error) and from the error of dl (times |h|); the Hessian's,
     // from X, h, a2 and from not moving them (t2).
     double const err_dl = err_fp * iha + adl * eps2;
-    double const err_g2p =
-        2.0 * p * ((es + 4.0 * kU) * ms + adl * mv * t2 +
-                   3.0 * adl * mx * (eps_x + 2.0 * kU) * (mq1s + mq2s)) +
-        err_dl * mh;
-    double const err_eps = 3.0 * (2.0 * p * mx * (eps_x + 2.0 * kU) +
+    double const err_g2p = p2 * ((es + 4.0 * kU) * ms + adl * mv * t2 +
+                                 3.0 * adl * mx * (eps_x + 2.0 * kU) * (mq1s + mq2s)) +
+                           err_dl * mh;
+    double const err_eps = 3.0 * (p2 * mx * (eps_x + 2.0 * kU) +
                                   mh * mh * (2.0 * e_h + eps2 + 3.0 * kU) * iha);
-    double const err_t = 3.0 * (2.0 * p * mx * t2 + 3.0 * mh * mh * t2 * iha);
-    bool const grad_ok = 3.0 * err_g2p <= kAcceptG * ms * (2.0 * p);
-    bool hess_ok = err_eps + err_t <= kAcceptH * mhess;
+    double const err_t = 3.0 * (p2 * mx * t2 + 3.0 * mh * mh * t2 * iha);
+    bool const grad_ok = 3.0 * err_g2p <= fastd::kAcceptG * ms * p2;
+    bool hess_ok = err_eps + err_t <= fastd::kAcceptH * mhess;
     if (grad_ok && !hess_ok && t2 <= kMaxMove) {
       // X, h and a2 moved to lambda + dl to first order:
       //   X' = -X D X, D = Q2 - Q1, (Q1 s)' = -Q1 v, (Q2 s)' = -Q2 v,
@@ -325,43 +360,52 @@ PW85_V4_INLINE bool adjugate_derivatives(double lambda, double mu2, Vec3 const &
       //   h' = 2 X' w + 2 X w' = X (2 w' - D h);
       // their second-order terms are below ~t2^2 relative, the rounding of
       // the first-order terms ~u times them.
-      Sym3 const dm = difference(q2, q1);
-      Sym3 xm;
-      for (int j = 0; j < kDim; ++j) {
-        Vec3 const cj = multiply(x, multiply(dm, column(x, j)));
-        for (int i = 0; i <= j; ++i) xm[kSymIndex[i][j]] = x[kSymIndex[i][j]] - cj[i] * dl;
-      }
-      Vec3 const y1 = multiply(x, q1s), y2 = multiply(x, q2s0), dy2 = multiply(dm, y2);
-      double const da2 = -(dot(q1v, y2) + dot(y1, dy2) + dot(y1, q2v));
+      __m512d const dm = _mm512_sub_pd(qb, qa);
+      // Columns j of X D X (lanes 0-2), then its stored entries.
+      __m512d w[3];
+      for (int j = 0; j < 3; ++j) w[j] = sym_mul(xv, sym_mul(dm, idx_perm(xv, sym_column(j))));
+      __m512d const w01 =
+          _mm512_permutex2var_pd(w[0], _mm512_setr_epi64(0, 8, 6, 9, 6, 6, 6, 6), w[1]);
+      __m512d const xdx =
+          _mm512_permutex2var_pd(w01, _mm512_setr_epi64(0, 1, 8, 3, 9, 10, 6, 6), w[2]);
+      __m512d const xm = _mm512_fnmadd_pd(xdx, vdl, xv);
+      // [X Q1 s, X Q2 s], D X Q2 s.
+      __m512d y = _mm512_mul_pd(idx_perm(xv, sym_column(0)),
+                                idx_perm(pv, _mm512_setr_epi64(0, 0, 0, 3, 3, 3, 6, 6)));
+      y = _mm512_fmadd_pd(idx_perm(xv, sym_column(1)),
+                          idx_perm(pv, _mm512_setr_epi64(1, 1, 1, 4, 4, 4, 6, 6)), y);
+      y = _mm512_fmadd_pd(idx_perm(xv, sym_column(2)),
+                          idx_perm(pv, _mm512_setr_epi64(2, 2, 2, 5, 5, 5, 6, 6)), y);
+      __m512d const y2 = idx_perm(y, hi3), dy2 = sym_mul(dm, y2);
+      __m512d const qv2 = idx_perm(qv, hi3);
+      double const da2 = -sum3(_mm512_fmadd_pd(
+          qv, y2, _mm512_fmadd_pd(y, dy2, _mm512_mul_pd(y, qv2))));
       double const a2m = a2 + da2 * dl, iham = 0.5 / a2m;
-      double const n2 = nu * nu, l2 = lh * lh;
-      Vec3 const dh_in = multiply(dm, h);
-      Vec3 wp;
-      for (int i = 0; i < kDim; ++i) wp[i] = 2.0 * (-2.0 * r[i] - n2 * q1v[i] + l2 * q2v[i]) - dh_in[i];
-      Vec3 const dh = multiply(x, wp);
-      Vec3 hm;
-      for (int i = 0; i < kDim; ++i) hm[i] = h[i] + dh[i] * dl;
-      double const mhm = max_abs3(hm);
-      double mhessm = 0.0;
-      Sym3 hess;
-      for (int e = 0; e < kSym; ++e) {
-        hess[e] = 2.0 * p * xm[e] + hm[kI[e]] * hm[kJ[e]] * iham;
-        mhessm = max2(mhessm, std::fabs(hess[e]));
-      }
-      double const md = max_abs6(dm), my1 = max_abs3(y1), my2 = max_abs3(y2);
+      __m512d const rv = _mm512_maskz_loadu_pd(0x07, r.x);
+      __m512d const wp = _mm512_sub_pd(
+          _mm512_mul_pd(_mm512_set1_pd(2.0),
+                        _mm512_fmadd_pd(_mm512_set1_pd(lh * lh), qv2,
+                                        _mm512_fmadd_pd(_mm512_set1_pd(-nu * nu), qv,
+                                                        _mm512_mul_pd(_mm512_set1_pd(-2.0), rv)))),
+          sym_mul(dm, hv));
+      __m512d const hm = _mm512_fmadd_pd(sym_mul(xv, wp), vdl, hv);
+      __m512d const hessm = _mm512_fmadd_pd(_mm512_mul_pd(idx_perm(hm, ki), idx_perm(hm, kj)),
+                                            _mm512_set1_pd(iham), _mm512_mul_pd(xm, _mm512_set1_pd(p2)));
+      double const mhm = triple_max(hm)[0], mhessm = max6(hessm);
+      __m512d const ym = triple_max(y), qm = triple_max(qv);
+      double const md = max6(dm), my1 = ym[0], my2 = ym[3];
       double const second = 4.0 * t2 * t2;
-      double const err_hm = 24.0 * kU * adl * mx * (max_abs3(wp) + 3.0 * md * mh) + second * mhm;
+      double const err_hm = 24.0 * kU * adl * mx * (triple_max(wp)[0] + 3.0 * md * mh) + second * mhm;
       double const err_am =
-          18.0 * kU * adl * (max_abs3(q1v) * my2 + 3.0 * my1 * md * my2 + my1 * max_abs3(q2v)) +
-          second * a2m;
+          18.0 * kU * adl * (qm[0] * my2 + 3.0 * my1 * md * my2 + my1 * qm[3]) + second * a2m;
       double const err_m =
-          3.0 * (2.0 * p * mx * (eps_x + 2.0 * kU + 2.0 * kU * t2 + second) +
+          3.0 * (p2 * mx * (eps_x + 2.0 * kU + 2.0 * kU * t2 + second) +
                  (2.0 * mhm * (e_h * mhm + err_hm) + mhm * mhm * (eps2 + 3.0 * kU) +
                   mhm * mhm * err_am * 2.0 * iham) * iham);
-      hess_ok = err_m <= kAcceptH * mhessm && a2m > 0.0;
-      if (hess_ok)
-        for (int e = 0; e < kSym; ++e) o.hess_r12[e] = hess[e];
+      hess_ok = err_m <= fastd::kAcceptH * mhessm && a2m > 0.0;
+      if (hess_ok) hess = hessm;
     }
+    _mm512_mask_storeu_pd(out.hess_r12, 0x3F, hess);
     bool const ok = grad_ok && hess_ok && a2 > 0.0 && lam > 0.0 && lam < 1.0;
     if (!ok) {
       // Once more at lambda + dl as a double-double, where the move is
@@ -372,7 +416,7 @@ PW85_V4_INLINE bool adjugate_derivatives(double lambda, double mu2, Vec3 const &
       ll = n.lo;
       continue;
     }
-    return all_finite(&o.mu2);
+    return all_finite(&out.mu2);
   }
   return false;
 }
