@@ -18,16 +18,18 @@
 //    common/orientation.cpp; x86 with GCC or Clang);
 //  - PW85_ISA_LEVELS: code compiled for x86-64-v3 (AVX2) and x86-64-v4
 //    (AVX-512): the filters of pw85_overlap (overlap/overlap.cpp), DEFAULT's
-//    rational step and general method (contact/default.cpp) and the entry of
-//    pw85_contact_function_method (contact/methods.cpp); GCC >= 12 on x86-64.
+//    rational step and general method (contact/default.cpp), the entry of
+//    pw85_contact_function_method (contact/methods.cpp) and the adjugate
+//    path of the derivatives (derivatives/adjugate.hpp); GCC >= 12 on x86-64.
 // The meson option isa_dispatch=false (PW85_NO_ISA_DISPATCH) turns both off:
 // every kernel then runs its portable code. kStaticFma is true when the
 // whole build targets FMA (-mfma, -march=...): the FMA body is then the only
 // one and needs no dispatch.
 //
-// Where results depend on the variant: DEFAULT on x86-64-v4 runs a different
-// algorithm first (docs/methods.md), so its results may differ in the last
-// bits from the portable code, within its documented accuracy; the FMA
+// Where results depend on the variant: DEFAULT and the derivatives on
+// x86-64-v4 run a different algorithm first (docs/methods.md,
+// docs/derivatives.md), so their results may differ in the last bits from
+// the portable code, within their documented accuracy; the FMA
 // double-double kernels may differ from their portable twins by an ulp. The
 // verdicts of pw85_overlap are identical for every variant.
 #pragma once

@@ -9,13 +9,13 @@
 //   f'(lambda) = U.W / B^2, a2 = -f''/2 = T1.(C T2) / B^3, h = 2 C W / B^2.
 // A polynomial evaluated in double-double errs by at most gamma u^2 times
 // the same polynomial of the absolute values (computed alongside in
-// double), so the relative error of each of them is known from that ratio;
-// a ratio beyond 2^-60 / (gamma u^2) (cancellation beyond ~2^40 in one of
-// them) declines to (E8). Q(lambda) is formed from lambda given as a
-// double-double, so that a second pass at lambda + dl (the root of f' to
-// ~u^2) serves the pairs whose first-order move is too large for the
-// Hessian (cond(Q(lambda)) u beyond ~1e-7: mostly semi-axis ratios beyond
-// 10^4).
+// double), so the relative error of each group is known from that ratio;
+// a group beyond its bound (kMaxRelS, kMaxRelT, kMaxRelH below) declines to
+// (E8). Where the Hessian's estimate fails because X, h and a2 were not
+// moved along dl, they are moved to first order; where the move is too
+// large for that, the whole runs again at lambda + dl, with lambda given as
+// a double-double (Q(lambda) is formed from it), where the move is ~u^2
+// relative.
 #pragma once
 
 #include <immintrin.h>

@@ -15,8 +15,9 @@
 //   d^2 mu^2 / d r^2 = 2 lambda (1 - lambda) Q^{-1} - h h^T / f'',
 //   h = d g / d lambda = 2 (1 - 2 lambda) s - 2 lambda (1 - lambda) Q^{-1} (Q2 - Q1) s.  (E6)
 //
-// Most pairs take the fast path of fast.hpp (E8); the others the refined
-// path (E7) below.
+// On x86-64-v4 the adjugate path of adjugate.hpp (E9) is tried first;
+// elsewhere, and where it declines, the fast path of fast.hpp (E8); the
+// others take the refined path (E7) below.
 //
 // Accuracy (E7): g depends on lambda to first order, so lambda from
 // PW85_METHOD_DEFAULT is refined by Newton steps on f'(lambda) = 0 with f' in
