@@ -136,42 +136,34 @@ PW85_V4_INLINE void kernel(double lh, double ll, Vec3 const &r, Sym3 const &q1, 
                                                          _mm512_mul_pd(_mm512_set1_pd(ll), b))));
   __m512d const qa = _mm512_fmadd_pd(_mm512_set1_pd(nu.hi), vabs(a),
                                      _mm512_mul_pd(_mm512_set1_pd(lh), vabs(b)));
-  // C = adj Q(lambda): entry k = P_k Q_k - S_k T_k (f_rational_dd.hpp's
-  // index vectors; lanes 6, 7 read the zero padding).
-  __m512i const ip = _mm512_setr_epi64(3, 2, 1, 0, 1, 0, 6, 6);
-  __m512i const iq = _mm512_setr_epi64(5, 4, 4, 5, 2, 3, 6, 6);
-  __m512i const is = _mm512_setr_epi64(4, 1, 2, 2, 0, 1, 6, 6);
-  __m512i const it = _mm512_setr_epi64(4, 5, 3, 2, 4, 1, 6, 6);
+  // C = adj Q(lambda): entry k = P_k Q_k - S_k T_k (adj_index,
+  // f_rational_dd.hpp; lanes 6, 7 read the zero padding).
+  AdjIndex const ix = adj_index();
+  __m512i const ip = ix.p, iq = ix.q, is = ix.s, it = ix.t;
   DD const c = sub(mul_dd(perm_dd(q, ip), perm_dd(q, iq)), mul_dd(perm_dd(q, is), perm_dd(q, it)));
   __m512d const ca = _mm512_fmadd_pd(idx_perm(qa, ip), idx_perm(qa, iq),
                                      _mm512_mul_pd(idx_perm(qa, is), idx_perm(qa, it)));
   // U = C r (lanes 0-2) and B = sum_j Q_0j C_0j (lane 3): column j of C
-  // times r_j, and C_0j times Q_0j in lane 3.
-  __m512i const col[3] = {_mm512_setr_epi64(0, 1, 2, 0, 6, 6, 6, 6),
-                          _mm512_setr_epi64(1, 3, 4, 1, 6, 6, 6, 6),
-                          _mm512_setr_epi64(2, 4, 5, 2, 6, 6, 6, 6)};
+  // (sym_column: C_0j in lane 3) times r_j, and times Q_0j in lane 3.
   DD ub{_mm512_setzero_pd(), _mm512_setzero_pd()};
   __m512d uba = _mm512_setzero_pd();
   for (int j = 0; j < 3; ++j) {
     __m512i const ij = _mm512_set1_epi64(j);
-    __m512d const rj = _mm512_set1_pd(r[j]);
+    __m512d const rj = _mm512_maskz_mov_pd(0x07, _mm512_set1_pd(r[j]));
     DD const m{_mm512_mask_permutexvar_pd(rj, 0x08, ij, q.h),
                _mm512_maskz_permutexvar_pd(0x08, ij, q.l)};
-    DD const p = mul_dd(perm_dd(c, col[j]), m);
-    __m512d const pm = _mm512_mul_pd(idx_perm(ca, col[j]),
+    DD const p = mul_dd(perm_dd(c, sym_column(j)), m);
+    __m512d const pm = _mm512_mul_pd(idx_perm(ca, sym_column(j)),
                                      _mm512_mask_permutexvar_pd(vabs(rj), 0x08, ij, qa));
     ub = j == 0 ? p : add(ub, p);
     uba = _mm512_add_pd(uba, pm);
   }
   // T1 = Q1 U (lanes 0-2), T2 = Q2 U (lanes 3-5): columns of Q1 and Q2
   // times U_j; and (1 - lambda) B U (lanes 0-2), for C W below.
-  __m512i const gcol[3] = {_mm512_setr_epi64(0, 1, 2, 8, 9, 10, 6, 6),
-                           _mm512_setr_epi64(1, 3, 4, 9, 11, 12, 6, 6),
-                           _mm512_setr_epi64(2, 4, 5, 10, 12, 13, 6, 6)};
   DD t{_mm512_setzero_pd(), _mm512_setzero_pd()};
   __m512d ta = _mm512_setzero_pd();
   for (int j = 0; j < 3; ++j) {
-    __m512d const g = _mm512_permutex2var_pd(a, gcol[j], b);
+    __m512d const g = q_columns(a, b, j);
     DD const p = mul_d(bcast_dd(ub, j), g);
     __m512d const pm = _mm512_mul_pd(vabs(g), idx_perm(uba, _mm512_set1_epi64(j)));
     t = j == 0 ? p : add(t, p);
@@ -187,8 +179,8 @@ PW85_V4_INLINE void kernel(double lh, double ll, Vec3 const &r, Sym3 const &q1, 
   DD y{_mm512_setzero_pd(), _mm512_setzero_pd()};
   __m512d ya = _mm512_setzero_pd();
   for (int j = 0; j < 3; ++j) {
-    DD const p = mul_dd(perm_dd(c, col[j]), bcast_dd(t, 3 + j));
-    __m512d const pm = _mm512_mul_pd(idx_perm(ca, col[j]), idx_perm(ta, _mm512_set1_epi64(3 + j)));
+    DD const p = mul_dd(perm_dd(c, sym_column(j)), bcast_dd(t, 3 + j));
+    __m512d const pm = _mm512_mul_pd(idx_perm(ca, sym_column(j)), bcast(ta, 3 + j));
     y = j == 0 ? p : add(y, p);
     ya = _mm512_add_pd(ya, pm);
   }

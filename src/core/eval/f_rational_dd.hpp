@@ -152,6 +152,17 @@ PW85_V4_INLINE void terms(__m512d pa, __m512d qa, __m512d sa, __m512d ta, __m512
   out.m[6] = _mm512_mul_pd(ac2, vb);
 }
 
+// Index vectors of the adjugate entries k (Sym3 storage order 00 01 02 11
+// 12 22) as P_k Q_k - S_k T_k, e.g. adj_01 = Q_02 Q_12 - Q_01 Q_22; lanes
+// 6, 7 index lane 6 (the zero padding of a masked load of six entries).
+struct AdjIndex {
+  __m512i p, q, s, t;
+};
+PW85_V4_INLINE AdjIndex adj_index() {
+  return AdjIndex{_mm512_setr_epi64(3, 2, 1, 0, 1, 0, 6, 6), _mm512_setr_epi64(5, 4, 4, 5, 2, 3, 6, 6),
+                  _mm512_setr_epi64(4, 1, 2, 2, 0, 1, 6, 6), _mm512_setr_epi64(4, 5, 3, 2, 4, 1, 6, 6)};
+}
+
 constexpr double kThird = 1.0 / 3.0;
 
 // The bits of the coefficients other than d0 (bit 3) and d3 (bit 6).
@@ -260,15 +271,11 @@ PW85_V4_INLINE bool rational_coefficients_dd(
   __m512d const a = _mm512_maskz_loadu_pd(0x3F, q1.a);
   __m512d const b = _mm512_maskz_loadu_pd(0x3F, q2.a);
   __m512d const rv = _mm512_maskz_loadu_pd(0x07, r.x);
-  // Adjugate entries k (storage order 00 01 02 11 12 22) as P_k Q_k - S_k T_k
-  // (lanes 6, 7 index entry 0 of the zero-padded input: they are zeroed
-  // below by the weights).
-  __m512i const ip = _mm512_setr_epi64(3, 2, 1, 0, 1, 0, 6, 6);
-  __m512i const iq = _mm512_setr_epi64(5, 4, 4, 5, 2, 3, 6, 6);
-  __m512i const is = _mm512_setr_epi64(4, 1, 2, 2, 0, 1, 6, 6);
-  __m512i const it = _mm512_setr_epi64(4, 5, 3, 2, 4, 1, 6, 6);
-  __m512d const pa = perm(a, ip), qa = perm(a, iq), sa = perm(a, is), ta = perm(a, it);
-  __m512d const pb = perm(b, ip), qb = perm(b, iq), sb = perm(b, is), tb = perm(b, it);
+  // Adjugate entries k as P_k Q_k - S_k T_k (adj_index; lanes 6, 7 are
+  // zeroed below by the weights).
+  AdjIndex const ix = adj_index();
+  __m512d const pa = perm(a, ix.p), qa = perm(a, ix.q), sa = perm(a, ix.s), ta = perm(a, ix.t);
+  __m512d const pb = perm(b, ix.p), qb = perm(b, ix.q), sb = perm(b, ix.s), tb = perm(b, ix.t);
   // Weights of the symmetric contraction sum_ij C_ij X_ij: 1 on the
   // diagonal, 2 off it, 0 in the padding lanes.
   __m512d const w = _mm512_setr_pd(1.0, 2.0, 2.0, 1.0, 2.0, 1.0, 0.0, 0.0);
