@@ -76,11 +76,19 @@ static int cell_index(const scene_t *s, const double *p) {
   return (idx[0] * s->nc + idx[1]) * s->nc + idx[2];
 }
 
+/* The tool's only response to a failed allocation: a message and exit
+ * status 2 (as for bad arguments), without a core dump. */
+static void out_of_memory(void) {
+  fputs("pw85_mc: out of memory\n", stderr);
+  exit(2);
+}
+
 static void cell_add(scene_t *s, int c, int i) {
   if (s->count[c] == s->cap[c]) {
     s->cap[c] = s->cap[c] ? 2 * s->cap[c] : 8;
-    s->members[c] = realloc(s->members[c], (size_t)s->cap[c] * sizeof(int));
-    if (!s->members[c]) abort();
+    int *grown = realloc(s->members[c], (size_t)s->cap[c] * sizeof(int));
+    if (!grown) out_of_memory();
+    s->members[c] = grown;
   }
   s->members[c][s->count[c]++] = i;
   s->cell_of[i] = c;
@@ -567,9 +575,12 @@ int main(int argc, char **argv) {
       if (j > i) {
         if (m == cap_pairs) {
           cap_pairs *= 2;
-          pairs = realloc(pairs, 2 * (size_t)cap_pairs * sizeof(long long));
-          img = realloc(img, 3 * (size_t)cap_pairs * sizeof(double));
-          if (!pairs || !img) abort();
+          long long *grown_pairs = realloc(pairs, 2 * (size_t)cap_pairs * sizeof(long long));
+          if (!grown_pairs) out_of_memory();
+          pairs = grown_pairs;
+          double *grown_img = realloc(img, 3 * (size_t)cap_pairs * sizeof(double));
+          if (!grown_img) out_of_memory();
+          img = grown_img;
         }
         double r[3];
         min_image(&s, s.x + 3 * i, s.x + 3 * j, r);
