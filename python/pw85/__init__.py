@@ -14,16 +14,18 @@ which returns the per-pair statuses too (failing entries NaN, or False for
 overlap verdicts).
 """
 from ._lib import (Error, Method, Status, status_name, strerror,
-                   RESULT_DTYPE, CONTACT_DTYPE, library_path, lib as _clib)
+                   RESULT_DTYPE, CONTACT_DTYPE, DERIVATIVES_DTYPE, library_path, lib as _clib)
 from ._api import (spheroid, ellipsoid, ellipsoid_quat, ellipsoid_rotation, ellipsoid_axes,
-                   contact_function, overlap, contact, contact_time,
+                   contact_function, overlap, contact, contact_derivatives, contact_time,
                    scene_overlap, scene_contact_function, scene_contact,
+                   scene_contact_derivatives,
                    dca, dca_ex, dca_2d, contact_function_2d)
 
 __version__ = _clib.pw85_version().decode()
 
 __all__ = ["Error", "Method", "Status", "status_name", "strerror", "spheroid", "ellipsoid",
            "ellipsoid_quat", "ellipsoid_rotation", "ellipsoid_axes",
-           "contact_function", "overlap", "contact", "contact_time", "scene_overlap",
-           "scene_contact_function", "scene_contact", "dca", "dca_ex", "dca_2d",
-           "contact_function_2d", "CONTACT_DTYPE", "RESULT_DTYPE", "__version__"]
+           "contact_function", "overlap", "contact", "contact_derivatives", "contact_time",
+           "scene_overlap", "scene_contact_function", "scene_contact",
+           "scene_contact_derivatives", "dca", "dca_ex", "dca_2d", "contact_function_2d",
+           "CONTACT_DTYPE", "DERIVATIVES_DTYPE", "RESULT_DTYPE", "__version__"]

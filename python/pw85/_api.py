@@ -7,7 +7,7 @@ import threading
 import numpy as np
 
 from ._lib import (lib, Error, Method, Status, status_name, strerror,
-                   Result, Contact, RESULT_DTYPE, CONTACT_DTYPE)
+                   Result, Contact, RESULT_DTYPE, CONTACT_DTYPE, DERIVATIVES_DTYPE)
 
 F64 = np.dtype(np.float64)
 _ND = np.ndarray
@@ -135,7 +135,7 @@ def _reason(status, k, rows):
             if not np.all(np.isfinite(row)):
                 return f"{name} holds a non-finite value {row.tolist()}"
         if "r12" in rows and not np.any(rows["r12"]):
-            return "r12 = 0 (contact geometry undefined)"
+            return "r12 = 0 (contact geometry and derivatives undefined)"
         if "u" in rows and not np.any(rows["u"]):
             return "u = 0"
     if status == Status.ERR_NOT_SPD:
@@ -452,6 +452,31 @@ def contact(r12, q1, q2, nthreads=0, check=True):
     return _out(c, batch), _out(st, batch)
 
 
+def contact_derivatives(r12, q1, q2, nthreads=0, check=True):
+    """Derivatives of mu^2 for forces, torques and the Hessian
+    (docs/derivatives.md) by pw85_contact_derivatives_pairs: a structured
+    array of the batch shape (a record for one pair) with the fields of
+    pw85_derivatives_t (mu2, lambda, d_r12 (3), d_theta1 (3), d_theta2 (3),
+    d_q1 (6), d_q2 (6), hess_r12 (6)). r12 = 0 is an error (no derivative
+    there). check=False: returns (derivatives, status), failing pairs NaN."""
+    nt = _nthreads(nthreads)
+    batch, (r, a, b) = _pairs(r12, q1, q2)
+    m = _size(batch)
+    d = np.empty(batch, DERIVATIVES_DTYPE)
+    st = np.zeros(batch, np.intc)
+    ret = 0
+    if m:
+        ret = lib.pw85_contact_derivatives_pairs(m, r.ctypes.data, a.ctypes.data, b.ctypes.data,
+                                                 d.ctypes.data, st.ctypes.data, nt)
+    if ret:
+        if check:
+            _raise("contact_derivatives", ret, st, _rows(r12=r, q1=a, q2=b), batch)
+        d[st != 0] = _NAN
+    if check:
+        return _out(d, batch)
+    return _out(d, batch), _out(st, batch)
+
+
 def contact_time(r12, v12, q1, w1, q2, w2, t_max, nthreads=0, check=True):
     """First contact time in [0, t_max] of pairs moving as r12 + t v12 with
     q1, q2 spinning at angular velocities w1, w2 (docs/contact_time.md), by
@@ -615,6 +640,29 @@ def scene_contact(centres, q, pairs, box=None, nthreads=0, check=True):
     if ret:
         if check:
             _raise("scene_contact", ret, st, _scene_rows(c, qq, p, bx), (m,))
+        out[st != 0] = _NAN
+    return out if check else (out, st)
+
+
+def scene_contact_derivatives(centres, q, pairs, box=None, nthreads=0, check=True):
+    """Derivatives of mu^2 for the index pairs (i, j) of a scene (as
+    scene_overlap), by pw85_scene_contact_derivatives: a structured array
+    (m,) as contact_derivatives(), with respect to r12 = c_j - c_i (or its
+    periodic image), q_i (d_q1, d_theta1) and q_j (d_q2, d_theta2).
+    check=False: (derivatives, status), failing pairs NaN."""
+    nt = _nthreads(nthreads)
+    c, qq, p, bx, pbox = _scene(centres, q, pairs, box)
+    m = p.shape[0]
+    out = np.empty(m, DERIVATIVES_DTYPE)
+    st = np.zeros(m, np.intc)
+    ret = 0
+    if m:
+        ret = lib.pw85_scene_contact_derivatives(c.shape[0], c.ctypes.data, qq.ctypes.data, pbox,
+                                                 m, p.ctypes.data, out.ctypes.data,
+                                                 st.ctypes.data, nt)
+    if ret:
+        if check:
+            _raise("scene_contact_derivatives", ret, st, _scene_rows(c, qq, p, bx), (m,))
         out[st != 0] = _NAN
     return out if check else (out, st)
 

@@ -83,8 +83,14 @@ RESULT_DTYPE = np.dtype([("mu2", "f8"), ("lambda", "f8"), ("mu2_error", "f8"),
 CONTACT_DTYPE = np.dtype([("mu2", "f8"), ("lambda", "f8"), ("x0", "f8", (3,)),
                           ("n", "f8", (3,)), ("dca", "f8"), ("depth", "f8"),
                           ("depth_n", "f8")])
+# struct pw85_derivatives_t: 29 doubles (docs/derivatives.md).
+DERIVATIVES_DTYPE = np.dtype([("mu2", "f8"), ("lambda", "f8"), ("d_r12", "f8", (3,)),
+                              ("d_theta1", "f8", (3,)), ("d_theta2", "f8", (3,)),
+                              ("d_q1", "f8", (6,)), ("d_q2", "f8", (6,)),
+                              ("hess_r12", "f8", (6,))])
 assert RESULT_DTYPE.itemsize == ctypes.sizeof(Result)
 assert CONTACT_DTYPE.itemsize == ctypes.sizeof(Contact)
+assert DERIVATIVES_DTYPE.itemsize == 29 * ctypes.sizeof(D)
 
 
 def _sig(f, argtypes, restype=I):
@@ -108,6 +114,7 @@ _sig(lib.pw85_contact_function, [P, P, P, P])
 _sig(lib.pw85_contact_function_method, [P, P, P, I, P])
 _sig(lib.pw85_overlap, [P, P, P])
 _sig(lib.pw85_contact, [P, P, P, P])
+_sig(lib.pw85_contact_derivatives, [P, P, P, P])
 _sig(lib.pw85_dca, [P, P, P, I, P])
 _sig(lib.pw85_dca_ex, [P, P, P, D, P, P])
 _sig(lib.pw85_dca_2d, [P, P, P, P])
@@ -115,10 +122,12 @@ _sig(lib.pw85_contact_function_2d, [P, P, P, P])
 _sig(lib.pw85_overlap_pairs, [LL, P, P, P, P, P, I])
 _sig(lib.pw85_contact_function_pairs, [LL, P, P, P, I, P, P, I])
 _sig(lib.pw85_contact_pairs, [LL, P, P, P, P, P, I])
+_sig(lib.pw85_contact_derivatives_pairs, [LL, P, P, P, P, P, I])
 _sig(lib.pw85_contact_time_pairs, [LL, P, P, P, P, P, P, D, P, P, I])
 _sig(lib.pw85_scene_overlap, [LL, P, P, P, LL, P, P, P, I])
 _sig(lib.pw85_scene_contact_function, [LL, P, P, P, LL, P, I, P, P, I])
 _sig(lib.pw85_scene_contact, [LL, P, P, P, LL, P, P, P, I])
+_sig(lib.pw85_scene_contact_derivatives, [LL, P, P, P, LL, P, P, P, I])
 
 
 def _declare_legacy(leg):

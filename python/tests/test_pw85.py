@@ -114,6 +114,41 @@ def test_overlap_and_contact_vectorised():
     assert np.allclose(c["dca"], np.linalg.norm(r12, axis=1) / np.sqrt(mu2))
 
 
+def test_contact_derivatives():
+    r12, q1, q2 = random_pairs(300, seed=11)
+    d = pw85.contact_derivatives(r12, q1, q2, nthreads=2)
+    assert d.dtype == pw85.DERIVATIVES_DTYPE and d.shape == (300,)
+    mu2, _ = pw85.contact_function(r12, q1, q2)
+    assert np.array_equal(d["mu2"], mu2)
+    # bitwise against the C one-pair call through bare ctypes
+    one = np.zeros(1, pw85.DERIVATIVES_DTYPE)
+    for k in range(0, 300, 13):
+        rk, ak, bk = (np.ascontiguousarray(x[k]) for x in (r12, q1, q2))
+        st = pw85._clib.pw85_contact_derivatives(rk.ctypes.data, ak.ctypes.data, bk.ctypes.data,
+                                                 one.ctypes.data)
+        assert st == 0 and one.tobytes() == d[k:k + 1].tobytes()
+        dk = pw85.contact_derivatives(r12[k], q1[k], q2[k])
+        assert dk.dtype == pw85.DERIVATIVES_DTYPE and dk.tobytes() == one.tobytes()
+    # Euler's identity for mu^2, homogeneous of degree 2 in r12: g.r12 = 2 mu^2
+    euler = np.einsum("ij,ij->i", d["d_r12"], r12)
+    assert np.all(np.abs(euler - 2 * mu2) <= 1e-13 * 2 * mu2)
+    # the gradient against a central difference of mu^2 along r12's first axis
+    h = 1e-6
+    e0 = np.array([h, 0.0, 0.0])
+    fd = (pw85.contact_function(r12 + e0, q1, q2)[0]
+          - pw85.contact_function(r12 - e0, q1, q2)[0]) / (2 * h)
+    assert np.allclose(fd, d["d_r12"][:, 0], rtol=1e-6, atol=1e-8 * np.abs(d["d_r12"]).max())
+    # r12 = 0: no derivative there
+    bad = r12.copy()
+    bad[4] = 0.0
+    with pytest.raises(pw85.Error, match="pair 4.*r12 = 0"):
+        pw85.contact_derivatives(bad, q1, q2)
+    d2, st = pw85.contact_derivatives(bad, q1, q2, check=False)
+    assert st[4] == pw85.Status.ERR_INVALID_ARGUMENT and st[3] == 0
+    assert all(np.isnan(d2[4][f]).all() for f in d2.dtype.names)
+    assert d2[3].tobytes() == d[3].tobytes()
+
+
 def test_broadcasting():
     r12, q1, q2 = random_pairs(40, seed=3)
     # one q1 against many q2
@@ -188,6 +223,8 @@ def test_scenes_against_per_pair_arrays(box):
     c = pw85.scene_contact(centres, q, pairs.astype(np.int32), box)
     cr = pw85.contact(r12, q1, q2)
     assert all(np.array_equal(c[f], cr[f]) for f in c.dtype.names)
+    dd = pw85.scene_contact_derivatives(centres, q, pairs, box, nthreads=2)
+    assert dd.tobytes() == pw85.contact_derivatives(r12, q1, q2).tobytes()
     mb, _ = pw85.scene_contact_function(centres, q, pairs, box, method=pw85.Method.BRENT)
     assert np.array_equal(mb, pw85.contact_function(r12, q1, q2, method="BRENT")[0])
     # one matrix for every ellipsoid
