@@ -199,9 +199,19 @@ PW85_V4_INLINE void kernel(double lh, double ll, Vec3 const &r, Sym3 const &q1, 
               _mm512_mask_blend_pd(0x38, ub.l, idx_perm(t.l, lo3))};
   DD const x2{_mm512_mask_blend_pd(0x38, w.h, idx_perm(y.h, lo3)),
               _mm512_mask_blend_pd(0x38, w.l, idx_perm(y.l, lo3))};
-  DD const pr = mul_dd(x1, x2);
-  __m512d const pra = _mm512_mul_pd(_mm512_mask_blend_pd(0x38, uba, idx_perm(ta, lo3)),
-                                    _mm512_mask_blend_pd(0x38, wa, idx_perm(ya, lo3)));
+  // The products with their low-times-low terms (mul_dd drops them: below
+  // u^2 x1a x2a, but not below the bound used here), so that the bound of
+  // the two dot products follows from those of their factors: the error of
+  // x1 (x1a, its absolute-value polynomial, times gamma u^2) times |x2|, and
+  // the other way round; the products' own roundings are within it.
+  // (x1a x2a, the polynomial of the dot product itself, can be far larger:
+  // both factors' cancellations multiplied.)
+  DD const p0 = two_prod(x1.h, x2.h);
+  DD const pr{p0.h, _mm512_fmadd_pd(x1.h, x2.l,
+                                    _mm512_fmadd_pd(x1.l, x2.h, _mm512_fmadd_pd(x1.l, x2.l, p0.l)))};
+  __m512d const x1a = _mm512_mask_blend_pd(0x38, uba, idx_perm(ta, lo3));
+  __m512d const x2a = _mm512_mask_blend_pd(0x38, wa, idx_perm(ya, lo3));
+  __m512d const pra = _mm512_fmadd_pd(x1a, vabs(x2.h), _mm512_mul_pd(vabs(x1.h), x2a));
   __m512i const n1 = _mm512_setr_epi64(1, 6, 6, 4, 6, 6, 6, 6);
   __m512i const n2 = _mm512_setr_epi64(2, 6, 6, 5, 6, 6, 6, 6);
   DD const dots = add(add(pr, perm_dd(pr, n1)), perm_dd(pr, n2));
@@ -331,13 +341,17 @@ PW85_V4_INLINE bool adjugate_derivatives(double lambda, double mu2, Vec3 const &
                                    _mm512_set1_pd(iha), _mm512_mul_pd(xv, _mm512_set1_pd(p2)));
     double mhess = max6(hess);
     // Error estimates of fast_derivatives (max norms; a factor 3 converts
-    // to 2-norms), multiplied through by |s| and 2 p: the gradient's, from
-    // s, from the move (adl mv / |s| relative, its second-order term times
-    // t2, v's error) and from the error of dl (times |h|); the Hessian's,
+    // to 2-norms), multiplied through by |s| and 2 p: the gradient's and
+    // s's, from s, from the move (adl mv / |s| relative, its second-order
+    // term times t2, v's error) and from the error of dl (times |h| for g,
+    // |v| for s, which d_q and the torques need on its own); the Hessian's,
     // from X, h, a2 and from not moving them (t2).
-    double const err_dl = err_fp * iha + adl * eps2;
+    // dl's error: from f', from a2 and from the step itself (Newton's
+    // truncation, f'' changing along dl by ~t2 relative).
+    double const err_dl = err_fp * iha + adl * (eps2 + t2);
     double const err_g2p = p2 * ((es + 4.0 * kU) * ms + adl * mv * t2 +
-                                 3.0 * adl * mx * (eps_x + 2.0 * kU) * (mq1s + mq2s)) +
+                                 3.0 * adl * mx * (eps_x + 2.0 * kU) * (mq1s + mq2s) +
+                                 err_dl * mv) +
                            err_dl * mh;
     double const err_eps = 3.0 * (p2 * mx * (eps_x + 2.0 * kU) +
                                   mh * mh * (2.0 * e_h + eps2 + 3.0 * kU) * iha);

@@ -164,7 +164,8 @@ PW85_ALWAYS_INLINE bool fast_derivatives(double lambda, double mu2, Vec3 const &
   // Error estimates (max norms; a factor 3 converts to 2-norms).
   // t: relative size of the move of s; t2 >= |dl| ||X (Q2 - Q1)||, the
   // relative change of X, f'' and h along dl (not moved) and, times t, the
-  // second-order term of s.
+  // second-order term of s. The error of dl moves g by |h| and s by |v|
+  // times it (s on its own: d_q and the torques).
   double const adl = std::fabs(dl);
   double const t = adl * mv * ims;
   double const t2 = 9.0 * adl * mx * (mq1 + mq2);
@@ -175,7 +176,7 @@ PW85_ALWAYS_INLINE bool fast_derivatives(double lambda, double mu2, Vec3 const &
   for (int i = 0; i < kDim; ++i) h[i] *= 2.0;
   double const err_g = es + 4.0 * kU + t * t2 +
                        3.0 * adl * mx * (eps_x + 2.0 * kU) * (mq1s + mq2s) * ims +
-                       err_dl * max_abs3(h) * ims / (2.0 * p);
+                       err_dl * (max_abs3(h) / (2.0 * p) + mv) * ims;
   if (!(3.0 * err_g <= kAcceptG && a2 > 0.0 && lam > 0.0 && lam < 1.0)) return false;
   double const err_w = (2.0 * kU + es) * (nus * mx0 + lam * lam * mq2s);
   // Hessian (E6): 2 p X + h h^T / (2 a2), accepted when its estimated error
