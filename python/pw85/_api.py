@@ -429,27 +429,35 @@ def overlap(r12, q1, q2, nthreads=0, check=True):
     return _out(res, batch), _out(st, batch)
 
 
+def _pair_records(name, cfunc, dtype, r12, q1, q2, nthreads, check):
+    """A C pairs call that fills one struct per pair: a structured array of
+    the batch shape (a record for one pair); check=False: (records, status),
+    failing pairs NaN."""
+    nt = _nthreads(nthreads)
+    batch, (r, a, b) = _pairs(r12, q1, q2)
+    m = _size(batch)
+    out = np.empty(batch, dtype)
+    st = np.zeros(batch, np.intc)
+    ret = 0
+    if m:
+        ret = cfunc(m, r.ctypes.data, a.ctypes.data, b.ctypes.data, out.ctypes.data,
+                    st.ctypes.data, nt)
+    if ret:
+        if check:
+            _raise(name, ret, st, _rows(r12=r, q1=a, q2=b), batch)
+        out[st != 0] = _NAN
+    if check:
+        return _out(out, batch)
+    return _out(out, batch), _out(st, batch)
+
+
 def contact(r12, q1, q2, nthreads=0, check=True):
     """Contact geometry of pairs by pw85_contact_pairs: a structured array of
     the batch shape (a record for one pair) with the fields of pw85_contact_t
     (mu2, lambda, x0 (3), n (3), dca, depth, depth_n). check=False: returns
     (contact, status), failing pairs NaN."""
-    nt = _nthreads(nthreads)
-    batch, (r, a, b) = _pairs(r12, q1, q2)
-    m = _size(batch)
-    c = np.empty(batch, CONTACT_DTYPE)
-    st = np.zeros(batch, np.intc)
-    ret = 0
-    if m:
-        ret = lib.pw85_contact_pairs(m, r.ctypes.data, a.ctypes.data, b.ctypes.data,
-                                     c.ctypes.data, st.ctypes.data, nt)
-    if ret:
-        if check:
-            _raise("contact", ret, st, _rows(r12=r, q1=a, q2=b), batch)
-        c[st != 0] = _NAN
-    if check:
-        return _out(c, batch)
-    return _out(c, batch), _out(st, batch)
+    return _pair_records("contact", lib.pw85_contact_pairs, CONTACT_DTYPE, r12, q1, q2,
+                         nthreads, check)
 
 
 def contact_derivatives(r12, q1, q2, nthreads=0, check=True):
@@ -459,22 +467,8 @@ def contact_derivatives(r12, q1, q2, nthreads=0, check=True):
     pw85_derivatives_t (mu2, lambda, d_r12 (3), d_theta1 (3), d_theta2 (3),
     d_q1 (6), d_q2 (6), hess_r12 (6)). r12 = 0 is an error (no derivative
     there). check=False: returns (derivatives, status), failing pairs NaN."""
-    nt = _nthreads(nthreads)
-    batch, (r, a, b) = _pairs(r12, q1, q2)
-    m = _size(batch)
-    d = np.empty(batch, DERIVATIVES_DTYPE)
-    st = np.zeros(batch, np.intc)
-    ret = 0
-    if m:
-        ret = lib.pw85_contact_derivatives_pairs(m, r.ctypes.data, a.ctypes.data, b.ctypes.data,
-                                                 d.ctypes.data, st.ctypes.data, nt)
-    if ret:
-        if check:
-            _raise("contact_derivatives", ret, st, _rows(r12=r, q1=a, q2=b), batch)
-        d[st != 0] = _NAN
-    if check:
-        return _out(d, batch)
-    return _out(d, batch), _out(st, batch)
+    return _pair_records("contact_derivatives", lib.pw85_contact_derivatives_pairs,
+                         DERIVATIVES_DTYPE, r12, q1, q2, nthreads, check)
 
 
 def contact_time(r12, v12, q1, w1, q2, w2, t_max, nthreads=0, check=True):
@@ -624,24 +618,31 @@ def scene_contact_function(centres, q, pairs, box=None, method="default", nthrea
     return (mu2, lam) if check else (mu2, lam, st)
 
 
+def _scene_records(name, cfunc, dtype, centres, q, pairs, box, nthreads, check):
+    """A C scene call that fills one struct per index pair: a structured
+    array (m,); check=False: (records, status), failing pairs NaN."""
+    nt = _nthreads(nthreads)
+    c, qq, p, bx, pbox = _scene(centres, q, pairs, box)
+    m = p.shape[0]
+    out = np.empty(m, dtype)
+    st = np.zeros(m, np.intc)
+    ret = 0
+    if m:
+        ret = cfunc(c.shape[0], c.ctypes.data, qq.ctypes.data, pbox, m, p.ctypes.data,
+                    out.ctypes.data, st.ctypes.data, nt)
+    if ret:
+        if check:
+            _raise(name, ret, st, _scene_rows(c, qq, p, bx), (m,))
+        out[st != 0] = _NAN
+    return out if check else (out, st)
+
+
 def scene_contact(centres, q, pairs, box=None, nthreads=0, check=True):
     """Contact geometry of the index pairs of a scene (as scene_overlap), by
     pw85_scene_contact: a structured array (m,) as contact();
     check=False: (contact, status), failing pairs NaN."""
-    nt = _nthreads(nthreads)
-    c, qq, p, bx, pbox = _scene(centres, q, pairs, box)
-    m = p.shape[0]
-    out = np.empty(m, CONTACT_DTYPE)
-    st = np.zeros(m, np.intc)
-    ret = 0
-    if m:
-        ret = lib.pw85_scene_contact(c.shape[0], c.ctypes.data, qq.ctypes.data, pbox, m,
-                                     p.ctypes.data, out.ctypes.data, st.ctypes.data, nt)
-    if ret:
-        if check:
-            _raise("scene_contact", ret, st, _scene_rows(c, qq, p, bx), (m,))
-        out[st != 0] = _NAN
-    return out if check else (out, st)
+    return _scene_records("scene_contact", lib.pw85_scene_contact, CONTACT_DTYPE, centres, q,
+                          pairs, box, nthreads, check)
 
 
 def scene_contact_derivatives(centres, q, pairs, box=None, nthreads=0, check=True):
@@ -650,21 +651,8 @@ def scene_contact_derivatives(centres, q, pairs, box=None, nthreads=0, check=Tru
     (m,) as contact_derivatives(), with respect to r12 = c_j - c_i (or its
     periodic image), q_i (d_q1, d_theta1) and q_j (d_q2, d_theta2).
     check=False: (derivatives, status), failing pairs NaN."""
-    nt = _nthreads(nthreads)
-    c, qq, p, bx, pbox = _scene(centres, q, pairs, box)
-    m = p.shape[0]
-    out = np.empty(m, DERIVATIVES_DTYPE)
-    st = np.zeros(m, np.intc)
-    ret = 0
-    if m:
-        ret = lib.pw85_scene_contact_derivatives(c.shape[0], c.ctypes.data, qq.ctypes.data, pbox,
-                                                 m, p.ctypes.data, out.ctypes.data,
-                                                 st.ctypes.data, nt)
-    if ret:
-        if check:
-            _raise("scene_contact_derivatives", ret, st, _scene_rows(c, qq, p, bx), (m,))
-        out[st != 0] = _NAN
-    return out if check else (out, st)
+    return _scene_records("scene_contact_derivatives", lib.pw85_scene_contact_derivatives,
+                          DERIVATIVES_DTYPE, centres, q, pairs, box, nthreads, check)
 
 
 # ---- distance of closest approach and 2D functions (a loop of one-pair calls)
