@@ -263,7 +263,6 @@ constexpr double kMaxMove = 0x1p-24;
 PW85_V4_INLINE bool adjugate_derivatives(double lambda, double mu2, Vec3 const &r,
                                          Sym3 const &q1, Sym3 const &q2,
                                          Derivatives &out) noexcept {
-  using fastd::max2;
   __m512d const qa = _mm512_maskz_loadu_pd(0x3F, q1.a), qb = _mm512_maskz_loadu_pd(0x3F, q2.a);
   double const mq1 = max6(qa), mq2 = max6(qb);
   __m512d const g[3] = {q_columns(qa, qb, 0), q_columns(qa, qb, 1), q_columns(qa, qb, 2)};

@@ -327,22 +327,14 @@ PW85_TARGET_FMA Status derivatives_fma(Vec3 const &r, Sym3 const &q1, Sym3 const
 #endif
 
 #if PW85_ISA_LEVELS
-// (E8) and (E7) after (E9) declined, out of line: inlined, they made
-// derivatives_v4 save and restore registers on every call.
-PW85_TARGET_V4 __attribute__((noinline)) Status derivatives_from_v4(
-    Status status, MethodResult const &res, bool solved, Vec3 const &r, Sym3 const &q1,
-    Sym3 const &q2, Derivatives &d) noexcept {
-  return derivatives_from<true>(status, res, solved, r, q1, q2, d);
-}
-
-// x86-64-v4: (E9) first (adjugate.hpp).
+// x86-64-v4: (E9) first (adjugate.hpp), then (E8) and (E7).
 PW85_TARGET_V4 Status derivatives_v4(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                                      bool in_range, Derivatives &d) noexcept {
   MethodResult res;
   bool solved;
   Status const status = solve_default(r, q1, q2, in_range, res, solved);
   if (solved && adjd::adjugate_derivatives(res.lambda, res.mu2, r, q1, q2, d)) return status;
-  return derivatives_from_v4(status, res, solved, r, q1, q2, d);
+  return derivatives_from<true>(status, res, solved, r, q1, q2, d);
 }
 #endif
 
