@@ -7,7 +7,9 @@
 // call over the n pairs of a class, alternating the order, in thread CPU
 // time; the table gives ns per call, median over the repetitions, and the
 // ratio of the medians. Also pw85_contact (contact point and normal) for
-// scale.
+// scale, and the batch forms over the same pairs on one thread:
+// pw85_contact_function_pairs (DEFAULT) and pw85_contact_derivatives_pairs,
+// with the ratio of their medians.
 //
 //   build/bench/bench_derivatives [--n 20000] [--reps 9] [--seed 20260521]
 //
@@ -72,7 +74,8 @@ int main(int argc, char **argv) {
     std::printf("# bench_derivatives: %s, seed %llu, n %d per class, reps %d\n", pw85_version(),
                 (unsigned long long)seed, n, reps);
     std::printf("# time: ns per call = (thread CPU time of one pass over the n pairs) / n, median over reps\n");
-    std::printf("class,axis_min,axis_max,n,default_ns,derivatives_ns,contact_ns,ratio_derivatives_default,n_status_nonzero\n");
+    std::printf("class,axis_min,axis_max,n,default_ns,derivatives_ns,contact_ns,ratio_derivatives_default,"
+                "pairs_default_ns,pairs_derivatives_ns,ratio_pairs,n_status_nonzero\n");
   }
   bench::Rng g{seed};
   for (int c = 0; c < 4; ++c) {
@@ -103,14 +106,26 @@ int main(int argc, char **argv) {
       sink = acc;
       continue;
     }
-    std::vector<double> t_def, t_der, t_con;
+    std::vector<double> t_def, t_der, t_con, t_pdef, t_pder;
+    std::vector<pw85_result> pres(n);
+    std::vector<pw85_derivatives_t> pder(n);
+    std::vector<int> pst(n);
     int bad = 0;
     for (int rep = 0; rep < reps; ++rep) {
-      for (int which = 0; which < 3; ++which) {
-        int const w = (which + rep) % 3;
+      for (int which = 0; which < 5; ++which) {
+        int const w = (which + rep) % 5;
         double acc = 0.0;
         double const t0 = thread_ns();
-        for (int k = 0; k < n; ++k) {
+        if (w == 3) {
+          pw85_contact_function_pairs(n, r.data(), q1.data(), q2.data(), PW85_METHOD_DEFAULT,
+                                      pres.data(), pst.data(), 1);
+          acc += pres[n - 1].mu2;
+        } else if (w == 4) {
+          pw85_contact_derivatives_pairs(n, r.data(), q1.data(), q2.data(), pder.data(),
+                                         pst.data(), 1);
+          acc += pder[n - 1].d_r12[0];
+        }
+        for (int k = 0; k < n && w < 3; ++k) {
           if (w == 0) {
             pw85_result res;
             if (pw85_contact_function_method(&r[3 * k], &q1[6 * k], &q2[6 * k],
@@ -131,12 +146,13 @@ int main(int argc, char **argv) {
         }
         double const dt = (thread_ns() - t0) / n;
         sink = acc;
-        (w == 0 ? t_def : w == 1 ? t_der : t_con).push_back(dt);
+        (w == 0 ? t_def : w == 1 ? t_der : w == 2 ? t_con : w == 3 ? t_pdef : t_pder).push_back(dt);
       }
     }
     double const md = median(t_def), mv = median(t_der), mc = median(t_con);
-    std::printf("%d,%g,%g,%d,%.1f,%.1f,%.1f,%.2f,%d\n", c, lo[c], hi[c], n, md, mv, mc, mv / md,
-                bad);
+    double const mpd = median(t_pdef), mpv = median(t_pder);
+    std::printf("%d,%g,%g,%d,%.1f,%.1f,%.1f,%.2f,%.1f,%.1f,%.2f,%d\n", c, lo[c], hi[c], n, md, mv,
+                mc, mv / md, mpd, mpv, mpv / mpd, bad);
     std::fflush(stdout);
   }
   return 0;

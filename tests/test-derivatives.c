@@ -498,6 +498,83 @@ static void test_batch(void) {
   g_rand_free(rng);
 }
 
+/* The batch forms take DEFAULT from its lanes (docs/batch.md) and continue
+ * from that solution: their results must be the one-pair call's, bit for
+ * bit, in every class, for pairs the one-pair call rescales (magnitudes far
+ * from 1) and for pairs it rejects, in every lane position. */
+static void test_batch_lanes(void) {
+  GRand *rng = g_rand_new_with_seed(11);
+  enum { M = 4 * 256 + 5, N = 2 * M };
+  static double r12[3 * M], q1[6 * M], q2[6 * M], centres[3 * N], q[6 * N];
+  static long long pairs[2 * M];
+  static pw85_derivatives_t d[M];
+  static int status[M];
+  const double lo[4] = {0.5, 0.1, 0.01, 0.001}, hi[4] = {2.0, 10.0, 100.0, 1000.0};
+  for (int k = 0; k < M; k++) {
+    int c = k % 4;
+    double rad1[3], rad2[3], ax[9], dir[3], n2 = 0.0;
+    random_radii(rng, lo[c], hi[c], rad1);
+    random_axes(rng, ax);
+    make_q(rad1, ax, q1 + 6 * k);
+    random_radii(rng, lo[c], hi[c], rad2);
+    random_axes(rng, ax);
+    make_q(rad2, ax, q2 + 6 * k);
+    for (int i = 0; i < 3; i++) {
+      dir[i] = g_rand_double_range(rng, -1.0, 1.0);
+      n2 += dir[i] * dir[i];
+    }
+    double reach = fmax(rad1[0], fmax(rad1[1], rad1[2])) + fmax(rad2[0], fmax(rad2[1], rad2[2]));
+    double t = g_rand_double_range(rng, 0.2, 1.5) * reach / sqrt(n2);
+    for (int i = 0; i < 3; i++) r12[3 * k + i] = t * dir[i];
+    if (k % 7 == 3) { /* far from 1: r times 2^e, Q times 2^-2e (mu^2 unchanged) */
+      int e = k % 2 ? 40 : -40;
+      for (int i = 0; i < 3; i++) r12[3 * k + i] = ldexp(r12[3 * k + i], e);
+      for (int i = 0; i < 6; i++) {
+        q1[6 * k + i] = ldexp(q1[6 * k + i], -2 * e);
+        q2[6 * k + i] = ldexp(q2[6 * k + i], -2 * e);
+      }
+    }
+  }
+  for (int i = 0; i < 3; i++) r12[3 * 100 + i] = 0.0; /* r12 = 0 */
+  q1[6 * 201] = -1.0;                                  /* not positive definite */
+  q2[6 * 302 + 4] = NAN;
+  for (int k = 0; k < M; k++) { /* the same pairs as a scene: ellipsoids 2k, 2k + 1 */
+    for (int i = 0; i < 3; i++) {
+      centres[3 * (2 * k) + i] = g_rand_double_range(rng, -5.0, 5.0);
+      centres[3 * (2 * k + 1) + i] = centres[3 * (2 * k) + i] + r12[3 * k + i];
+    }
+    memcpy(q + 6 * (2 * k), q1 + 6 * k, sizeof(double[6]));
+    memcpy(q + 6 * (2 * k + 1), q2 + 6 * k, sizeof(double[6]));
+    pairs[2 * k] = 2 * k;
+    pairs[2 * k + 1] = 2 * k + 1;
+  }
+  int counts[3] = {0, 0, 0}; /* statuses OK, INACCURATE, other */
+  for (int nt = 0; nt <= 2; nt += 2) {
+    memset(d, 0x55, sizeof d);
+    pw85_contact_derivatives_pairs(M, r12, q1, q2, d, status, nt);
+    for (int k = 0; k < M; k++) {
+      pw85_derivatives_t one;
+      int s = pw85_contact_derivatives(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k, &one);
+      g_assert_cmpint(status[k], ==, s);
+      g_assert_cmpmem(&one, sizeof one, d + k, sizeof one);
+      if (nt == 0) counts[s == PW85_OK ? 0 : s == PW85_ERR_INACCURATE ? 1 : 2]++;
+    }
+    memset(d, 0x55, sizeof d);
+    pw85_scene_contact_derivatives(N, centres, q, NULL, M, pairs, d, status, nt);
+    for (int k = 0; k < M; k++) {
+      double r[3];
+      for (int i = 0; i < 3; i++) r[i] = centres[3 * (2 * k + 1) + i] - centres[3 * (2 * k) + i];
+      pw85_derivatives_t one;
+      int s = pw85_contact_derivatives(r, q + 6 * (2 * k), q + 6 * (2 * k + 1), &one);
+      g_assert_cmpint(status[k], ==, s);
+      g_assert_cmpmem(&one, sizeof one, d + k, sizeof one);
+    }
+  }
+  g_assert_cmpint(counts[0], >=, M - 8); /* the three bad pairs and a few others at most */
+  g_assert_cmpint(counts[2], >=, 3);
+  g_rand_free(rng);
+}
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   g_test_add_func("/pw85_contact_derivatives/formulas-finite-differences", test_formulas_fd);
@@ -507,5 +584,6 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact_derivatives/scaling", test_scaling);
   g_test_add_func("/pw85_contact_derivatives/bad-input", test_bad_input);
   g_test_add_func("/pw85_contact_derivatives/batch", test_batch);
+  g_test_add_func("/pw85_contact_derivatives/batch-lanes", test_batch_lanes);
   return g_test_run();
 }

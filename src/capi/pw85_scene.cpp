@@ -9,12 +9,14 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
 #include "pw85.h"
 #include "contact/contact.hpp"
+#include "derivatives/derivatives.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "overlap/overlap.hpp"
 #include "common/sym3.hpp"
@@ -389,6 +391,47 @@ void default_block(long long k0, Pair pair, pw85_result *res, int st[]) noexcept
   }
 }
 
+// pw85_contact_derivatives for pairs k0 ... k0 + kDefaultLanes - 1, with
+// DEFAULT from the lanes of default_lanes: a lane that default_lanes
+// decides with a solution (PW85_OK, PW85_ERR_INACCURATE), of magnitudes
+// that pw85_contact_derivatives takes without rescaling, continues from
+// that solution (contact_derivatives_from_default: the one-pair call's
+// bits); the other lanes make the one-pair call. pair(): as for
+// default_block.
+template <class Pair>
+void derivatives_block(long long k0, Pair pair, pw85_derivatives_t *d, int st[]) noexcept {
+  constexpr int w = pw85::kDefaultLanes;
+  static constexpr double kZero[6] = {0, 0, 0, 0, 0, 0};
+  double buf[w][3];
+  double const *rp[w], *q1p[w], *q2p[w];
+  bool ok[w];
+  for (int l = 0; l < w; ++l) {
+    ok[l] = pair(k0 + l, buf[l], rp[l], q1p[l], q2p[l]);
+    if (!ok[l]) rp[l] = q1p[l] = q2p[l] = kZero;
+  }
+  pw85::MethodResult mr[w];
+  int ls[w];
+  pw85::default_lanes(rp, q1p, q2p, mr, ls);
+  for (int l = 0; l < w; ++l) {
+    pw85_derivatives_t &o = d[k0 + l];
+    if (!ok[l]) {
+      fill_nan(&o.mu2, 29);
+      st[l] = PW85_ERR_INVALID_ARGUMENT;
+      continue;
+    }
+    pw85::Vec3 const r = pw85::load_vec3(rp[l]);
+    pw85::Sym3 const a = pw85::load_sym3(q1p[l]), b = pw85::load_sym3(q2p[l]);
+    if ((ls[l] == PW85_OK || ls[l] == PW85_ERR_INACCURATE) &&
+        pw85::derivatives_from_default_ok(r, a, b)) {
+      pw85::Derivatives out;
+      st[l] = pw85::contact_derivatives_from_default(r, a, b, pw85::Status(ls[l]), mr[l], out);
+      std::memcpy(&o, &out, sizeof out);
+    } else {
+      st[l] = pw85_contact_derivatives(rp[l], q1p[l], q2p[l], &o);
+    }
+  }
+}
+
 // The checks shared by the calls of m > 0 pairs (pointers checked by the
 // caller).
 inline bool valid_count(long long m, int nthreads) noexcept { return m > 0 && nthreads >= 0; }
@@ -680,9 +723,22 @@ int pw85_contact_derivatives_pairs(long long m, double const *r12, double const 
   if (!valid_count(m, nthreads) || r12 == nullptr || q1 == nullptr || q2 == nullptr ||
       d == nullptr)
     return PW85_ERR_INVALID_ARGUMENT;
-  return run_pairs(m, status, nthreads, 64, [&](long long k) noexcept {
+  auto one = [&](long long k) noexcept {
     return pw85_contact_derivatives(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k, d + k);
-  });
+  };
+  auto block = [&](long long k0, int st[]) noexcept {
+    derivatives_block(
+        k0,
+        [&](long long k, double *, double const *&r, double const *&a,
+            double const *&b) noexcept {
+          r = r12 + 3 * k;
+          a = q1 + 6 * k;
+          b = q2 + 6 * k;
+          return true;
+        },
+        d, st);
+  };
+  return run_blocks<pw85::kDefaultLanes>(m, status, nthreads, kDefaultChunk, block, one);
 }
 
 int pw85_contact_time_pairs(long long m, double const *r12, double const *v12, double const *q1,
@@ -706,12 +762,24 @@ int pw85_scene_contact_derivatives(long long n, double const *centres, double co
   Box b;
   if (!scene_args(n, centres, q, box, m, pairs, d, nthreads, b))
     return PW85_ERR_INVALID_ARGUMENT;
-  return scene(n, centres, q, b, m, pairs, status, nthreads, 64,
-               [&](long long k, double const *r12, long long i, long long j) noexcept {
-                 if (r12) return pw85_contact_derivatives(r12, q + 6 * i, q + 6 * j, d + k);
-                 fill_nan(&d[k].mu2, 29);
-                 return int{PW85_ERR_INVALID_ARGUMENT};
-               });
+  auto one = [&](long long k) noexcept {
+    double r12[3];
+    long long i, j;
+    if (scene_r12(n, centres, q, b, pairs, k, r12, i, j) == PW85_OK)
+      return pw85_contact_derivatives(r12, q + 6 * i, q + 6 * j, d + k);
+    fill_nan(&d[k].mu2, 29);
+    return int{PW85_ERR_INVALID_ARGUMENT};
+  };
+  auto block = [&](long long k0, int st[]) noexcept {
+    derivatives_block(
+        k0,
+        [&](long long k, double *buf, double const *&r, double const *&a,
+            double const *&c) noexcept {
+          return scene_pair(n, centres, q, b, pairs, m, k, buf, r, a, c);
+        },
+        d, st);
+  };
+  return run_blocks<pw85::kDefaultLanes>(m, status, nthreads, kDefaultChunk, block, one);
 }
 
 int pw85_scene_contact(long long n, double const *centres, double const *q, double const box[6],

@@ -157,25 +157,29 @@ PW85_ALWAYS_INLINE bool at_lambda(double lambda, Vec3 const &r, Sym3 const &q1, 
   return std::isfinite(a.fp);
 }
 
-// contact_derivatives with the double-double products of arith/dd.hpp by
-// FMA (F = true) or Dekker's product;
-// in_range: every magnitude inside (kSafeLo, kSafeHi) and r != 0, so that
-// DEFAULT is called without the dispatcher's checks (contact.hpp).
-// DEFAULT's solution (status, res), with `solved` its test below.
-inline Status solve_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, bool in_range,
-                            MethodResult &res, bool &solved) noexcept {
-  Status const status = in_range ? contact_method_in_range(kMethodDefault, r, q1, q2, res)
-                                  : contact_method(kMethodDefault, r, q1, q2, res);
-  solved = (status == kOk || status == kInaccurate) && res.lambda > 0.0 && res.lambda < 1.0;
-  return status;
+// DEFAULT's solution (status, res) has a maximiser inside (0, 1).
+inline bool is_solved(Status status, MethodResult const &res) noexcept {
+  return (status == kOk || status == kInaccurate) && res.lambda > 0.0 && res.lambda < 1.0;
 }
 
-// The derivatives from DEFAULT's solution: (E8), otherwise (E7).
+// DEFAULT's solution; in_range: every magnitude inside (kSafeLo, kSafeHi)
+// and r != 0, so that DEFAULT is called without the dispatcher's checks
+// (contact.hpp).
+inline Status solve_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, bool in_range,
+                            MethodResult &res) noexcept {
+  return in_range ? contact_method_in_range(kMethodDefault, r, q1, q2, res)
+                  : contact_method(kMethodDefault, r, q1, q2, res);
+}
+
+// The derivatives from DEFAULT's solution (status, res): (E8), otherwise
+// (E7); the double-double products of arith/dd.hpp by FMA (F = true) or
+// Dekker's product.
 template <bool F>
-PW85_ALWAYS_INLINE Status derivatives_from(Status status, MethodResult const &res, bool solved,
+PW85_ALWAYS_INLINE Status derivatives_from(Status status, MethodResult const &res,
                                            Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                                            Derivatives &d) noexcept {
   static_assert(sizeof(Derivatives) == 29 * sizeof(double), "plain struct of 29 doubles");
+  bool const solved = is_solved(status, res);
   double lambda = res.lambda;
   // (E8): most pairs; otherwise the refined path (E7) below.
   if (solved && fastd::fast_derivatives<F>(lambda, res.mu2, r, q1, q2, d)) return status;
@@ -310,46 +314,52 @@ PW85_ALWAYS_INLINE Status derivatives_from(Status status, MethodResult const &re
   }
 }
 
-template <bool F>
-PW85_ALWAYS_INLINE Status derivatives_impl(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                           bool in_range, Derivatives &d) noexcept {
-  MethodResult res;
-  bool solved;
-  Status const status = solve_default(r, q1, q2, in_range, res, solved);
-  return derivatives_from<F>(status, res, solved, r, q1, q2, d);
-}
-
 #if PW85_ISA_FMA
-PW85_TARGET_FMA Status derivatives_fma(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                       bool in_range, Derivatives &d) noexcept {
-  return derivatives_impl<true>(r, q1, q2, in_range, d);
+PW85_TARGET_FMA Status derivatives_fma(Status status, MethodResult const &res, Vec3 const &r,
+                                       Sym3 const &q1, Sym3 const &q2, Derivatives &d) noexcept {
+  return derivatives_from<true>(status, res, r, q1, q2, d);
 }
 #endif
 
 #if PW85_ISA_LEVELS
 // x86-64-v4: (E9) first (adjugate.hpp), then (E8) and (E7).
-PW85_TARGET_V4 Status derivatives_v4(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                     bool in_range, Derivatives &d) noexcept {
-  MethodResult res;
-  bool solved;
-  Status const status = solve_default(r, q1, q2, in_range, res, solved);
-  if (solved && adjd::adjugate_derivatives(res.lambda, res.mu2, r, q1, q2, d)) return status;
-  return derivatives_from<true>(status, res, solved, r, q1, q2, d);
+PW85_TARGET_V4 Status derivatives_v4(Status status, MethodResult const &res, Vec3 const &r,
+                                     Sym3 const &q1, Sym3 const &q2, Derivatives &d) noexcept {
+  if (is_solved(status, res) &&
+      adjd::adjugate_derivatives(res.lambda, res.mu2, r, q1, q2, d))
+    return status;
+  return derivatives_from<true>(status, res, r, q1, q2, d);
 }
 #endif
 
-inline Status derivatives_dispatch(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                   bool in_range, Derivatives &d) noexcept {
+// The derivatives from DEFAULT's solution, for this CPU.
+inline Status derivatives_dispatch(Status status, MethodResult const &res, Vec3 const &r,
+                                   Sym3 const &q1, Sym3 const &q2, Derivatives &d) noexcept {
 #if PW85_ISA_LEVELS
-  if (isa::has_v4()) return derivatives_v4(r, q1, q2, in_range, d);
+  if (isa::has_v4()) return derivatives_v4(status, res, r, q1, q2, d);
 #endif
 #if PW85_ISA_FMA
-  if (isa::has_fma()) return derivatives_fma(r, q1, q2, in_range, d);
+  if (isa::has_fma()) return derivatives_fma(status, res, r, q1, q2, d);
 #endif
-  return derivatives_impl<isa::kStaticFma>(r, q1, q2, in_range, d);
+  return derivatives_from<isa::kStaticFma>(status, res, r, q1, q2, d);
+}
+
+// Magnitudes that contact_derivatives takes as they are (no rescaling).
+inline bool unscaled(double mq, double mr) noexcept {
+  return mq > 0x1p-60 && mq < 0x1p60 && mr > 0x1p-30 && mr < 0x1p30;
 }
 
 }  // namespace
+
+bool derivatives_from_default_ok(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
+  return unscaled(fastd::max2(fastd::max_abs6(q1), fastd::max_abs6(q2)), fastd::max_abs3(r));
+}
+
+Status contact_derivatives_from_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                        Status status, MethodResult const &res,
+                                        Derivatives &d) noexcept {
+  return derivatives_dispatch(status, res, r, q1, q2, d);
+}
 
 // Magnitudes far from 1: mu^2(2^e r, 2^2e Q1, 2^2e Q2) = mu^2(r, Q1, Q2), so
 // the pair is solved with the larger matrix scaled to [1, 4) by an exact
@@ -360,10 +370,12 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   double const mq1 = fastd::max_abs6(q1), mq2 = fastd::max_abs6(q2);
   double const mq = fastd::max2(mq1, mq2);
   double const mr = fastd::max_abs3(r);
-  if (mq > 0x1p-60 && mq < 0x1p60 && mr > 0x1p-30 && mr < 0x1p30)
-    return derivatives_dispatch(r, q1, q2,
-                                mq1 > kSafeLo && mq1 < kSafeHi && mq2 > kSafeLo && mq2 < kSafeHi,
-                                d);
+  if (unscaled(mq, mr)) {
+    bool const in_range = mq1 > kSafeLo && mq1 < kSafeHi && mq2 > kSafeLo && mq2 < kSafeHi;
+    MethodResult res;
+    Status const status = solve_default(r, q1, q2, in_range, res);
+    return derivatives_dispatch(status, res, r, q1, q2, d);
+  }
   int ex;
   std::frexp(mq, &ex);
   int const e = -(ex / 2);
@@ -375,7 +387,9 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
     b[i] = std::ldexp(q2[i], 2 * e);
   }
   Derivatives s;
-  Status const status = derivatives_dispatch(rs, a, b, false, s);
+  MethodResult res;
+  Status const status =
+      derivatives_dispatch(solve_default(rs, a, b, false, res), res, rs, a, b, s);
   if (status != kOk && status != kInaccurate) {
     d = s;  // all NaN
     return status;

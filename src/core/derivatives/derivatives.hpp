@@ -6,6 +6,7 @@
 
 #include "common/status.hpp"
 #include "common/sym3.hpp"
+#include "contact/contact.hpp"
 
 namespace pw85 {
 
@@ -25,5 +26,15 @@ struct Derivatives {
 // or kNoConvergence (every field NaN).
 Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                            Derivatives &d) noexcept;
+
+// contact_derivatives for a caller that already has DEFAULT's solution of
+// the pair (status and res as pw85_contact_function_method gives them: the
+// batch calls, from default_lanes). Its result is contact_derivatives',
+// bit for bit, where derivatives_from_default_ok holds: magnitudes that
+// contact_derivatives takes without rescaling (r != 0 among them).
+bool derivatives_from_default_ok(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept;
+Status contact_derivatives_from_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                        Status status, MethodResult const &res,
+                                        Derivatives &d) noexcept;
 
 }  // namespace pw85
