@@ -2,7 +2,7 @@
 // common path of default_body (default.cpp) for kLanes pairs at once (a
 // block of kDefaultLanes pairs in kDefaultLanes / kLanes vectors), pair l in
 // lane l of each vector: the screen of the entry (screen.hpp,
-// screen_contact_pair), the start (M22) (start_lanes.hpp: start_quartics;
+// screen_contact_pair), the start (M22) (start.hpp: start_quartics;
 // start.hpp: log_newton_iterate, newton_start), then the Halley
 // iteration (M8) with adjugate evaluations (f_adj.hpp, eq. (M16)) until the
 // quartic model (M18) is accepted with the first-order error of step 1
@@ -49,7 +49,7 @@ typedef Vec3L<W> T;
 // DEFAULT's start (M22) (start.hpp: start_quartics<true>,
 // log_newton_iterate<kStartMin, kStartMax>, newton_start).
 PW85_ALWAYS_INLINE V default_start(T const &r, S const &q1, S const &q2) noexcept {
-  StartQuarticsL<W> sq;
+  StartQuarticsOf<VecD<W>> sq;
   start_quartics<true>(r, q1, q2, sq);
   V const a10 = sq.a1[0], a11 = sq.a1[1], a12 = sq.a1[2], a13 = sq.a1[3], a14 = sq.a1[4];
   V const a20 = sq.a2[0], a21 = sq.a2[1], a22 = sq.a2[2], a23 = sq.a2[3], a24 = sq.a2[4];

@@ -171,7 +171,7 @@ PW85_V4_INLINE V8 grid_start(Vec3L<W> const &r, SymL<W> const &q1, SymL<W> const
                             double const *const rp[W], double const *const q1p[W],
                             double const *const q2p[W]) noexcept {
   using namespace default_params;
-  StartQuarticsL<W> sq;
+  StartQuarticsOf<VecD<W>> sq;
   start_quartics<false>(r, q1, q2, sq);
   V8 pn[7], pdn[7];
   scan_sextics(sq, pn, pdn);

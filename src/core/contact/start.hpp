@@ -5,8 +5,10 @@
 #pragma once
 
 #include <cmath>
+#include <type_traits>
 
 #include "common/isa.hpp"
+#include "common/lanes.hpp"
 #include "common/sym3.hpp"
 
 namespace pw85 {
@@ -22,28 +24,45 @@ inline double newton_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexce
 
 namespace detail {
 
+// The algebra below is written once for one pair (Sym3, Vec3, double) and
+// for one pair per vector lane (contact/start_lanes.hpp: SymL, Vec3L,
+// lanes::VecD): the same operations in the same order, so a lane's values
+// are the one-pair code's bits (the including files are compiled without
+// contraction, src/meson.build).
+
 // a_i = n^T Q_i n, i = 1, 2, and adj(q) r below: what dot(n, multiply(q, n))
 // and multiply(adjugate3(q), r) of sym3.hpp compute, summed as short trees
 // (the dependency chain is the cost of the start). The two orders give
 // starts that differ in the last bits, which moves some results by an ulp
 // (tests/test-contact.c's point bounds, set at the measured maxima, notice).
-inline void support_squares(Vec3 const &n, Sym3 const &q1, Sym3 const &q2, double &a1,
-                            double &a2) noexcept {
-  double const n00 = n[0] * n[0], n11 = n[1] * n[1], n22 = n[2] * n[2];
-  double const n01 = 2.0 * n[0] * n[1], n02 = 2.0 * n[0] * n[2], n12 = 2.0 * n[1] * n[2];
+template <class Vc, class Sy, class V>
+PW85_ALWAYS_INLINE void support_squares(Vc const &n, Sy const &q1, Sy const &q2, V &a1,
+                                        V &a2) noexcept {
+  V const n00 = n[0] * n[0], n11 = n[1] * n[1], n22 = n[2] * n[2];
+  V const n01 = 2.0 * n[0] * n[1], n02 = 2.0 * n[0] * n[2], n12 = 2.0 * n[1] * n[2];
   a1 = (q1[0] * n00 + q1[3] * n11) + (q1[5] * n22 + q1[1] * n01) + (q1[2] * n02 + q1[4] * n12);
   a2 = (q2[0] * n00 + q2[3] * n11) + (q2[5] * n22 + q2[1] * n01) + (q2[2] * n02 + q2[4] * n12);
 }
 
 // c r summed as short trees (multiply() of sym3.hpp sums left to right).
-inline Vec3 tree_times(Sym3 const &c, Vec3 const &r) noexcept {
-  return Vec3{{c[0] * r[0] + (c[1] * r[1] + c[2] * r[2]),
-               c[1] * r[0] + (c[3] * r[1] + c[4] * r[2]),
-               c[2] * r[0] + (c[4] * r[1] + c[5] * r[2])}};
+template <class Sy, class Vc>
+PW85_ALWAYS_INLINE Vc tree_times(Sy const &c, Vc const &r) noexcept {
+  return Vc{{c[0] * r[0] + (c[1] * r[1] + c[2] * r[2]),
+             c[1] * r[0] + (c[3] * r[1] + c[4] * r[2]),
+             c[2] * r[0] + (c[4] * r[1] + c[5] * r[2])}};
 }
 
-inline Vec3 adj_times(Sym3 const &q, Vec3 const &r) noexcept {
+template <class Sy, class Vc>
+PW85_ALWAYS_INLINE Vc adj_times(Sy const &q, Vc const &r) noexcept {
   return tree_times(adjugate3(q), r);
+}
+
+template <class V>
+PW85_ALWAYS_INLINE V square_root(V x) noexcept {
+  if constexpr (std::is_same_v<V, double>)
+    return std::sqrt(x);
+  else
+    return lanes::vsqrt(x);
 }
 
 }  // namespace detail
@@ -131,41 +150,48 @@ PW85_ALWAYS_INLINE double fixed_point_start(Vec3 const &r, Sym3 const &q1, Sym3 
 // rounding-dominated quartic) falls back to (M7).
 // The quartics of (M22) (scaled coefficients c_ik, k = 0..4) and the first
 // (M19) iterate x0.
-struct StartQuartics {
-  double a1[5], a2[5];
-  double x0;
+template <class V>
+struct StartQuarticsOf {
+  V a1[5], a2[5];
+  V x0;
 };
+using StartQuartics = StartQuarticsOf<double>;
 
 // kScaled = false (start_scan.hpp): the coefficients unscaled and no x0.
-template <bool kScaled = true>
-PW85_ALWAYS_INLINE void start_quartics(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                       StartQuartics &sq) noexcept {
-  Sym3 q12;
+// One pair, or one pair per lane (start_lanes.hpp).
+template <bool kScaled = true, class Vc, class Sy, class V>
+PW85_ALWAYS_INLINE void start_quartics(Vc const &r, Sy const &q1, Sy const &q2,
+                                       StartQuarticsOf<V> &sq) noexcept {
+  Sy q12;
   for (int i = 0; i < kSym; ++i) q12[i] = q1[i] + q2[i];
-  Sym3 const c1 = adjugate3(q1), c2 = adjugate3(q2);
-  Vec3 const n12 = detail::adj_times(q12, r);
-  Vec3 const n1 = detail::tree_times(c1, r), n2 = detail::tree_times(c2, r);
-  Vec3 m;
+  Sy const c1 = adjugate3(q1), c2 = adjugate3(q2);
+  Vc const n12 = detail::adj_times(q12, r);
+  Vc const n1 = detail::tree_times(c1, r), n2 = detail::tree_times(c2, r);
+  Vc m;
   for (int i = 0; i < kDim; ++i) m[i] = n12[i] - (n1[i] + n2[i]);
   // a_i(1) (x = 1, lambda = 1/2: n = adj(Q1 + Q2) r), the first (M19) iterate.
-  double s1, s2;
+  V s1, s2;
   detail::support_squares(n12, q1, q2, s1, s2);
-  sq.x0 = kScaled ? std::sqrt(s1 / s2) : 0.0;
-  double const sc = kScaled ? 1.0 / (s1 + s2) : 1.0;
-  double const det1 = det_with_adjugate(q1, c1) * sc;
-  double const det2 = det_with_adjugate(q2, c2) * sc;
+  V sc = V{} + 1.0;
+  sq.x0 = V{};
+  if constexpr (kScaled) {
+    sq.x0 = detail::square_root(s1 / s2);
+    sc = 1.0 / (s1 + s2);
+  }
+  V const det1 = det_with_adjugate(q1, c1) * sc;
+  V const det2 = det_with_adjugate(q2, c2) * sc;
   // t1 = tr(adj(Q1) Q2), t2 = tr(Q1 adj(Q2)) (scaled), the middle terms of
   // det(Q1 + x Q2) = det1 + t1 x + t2 x^2 + det2 x^3.
-  double const t1 = ((c1[0] * q2[0] + c1[3] * q2[3]) + c1[5] * q2[5] +
-                     2.0 * ((c1[1] * q2[1] + c1[2] * q2[2]) + c1[4] * q2[4])) * sc;
-  double const t2 = ((q1[0] * c2[0] + q1[3] * c2[3]) + q1[5] * c2[5] +
-                     2.0 * ((q1[1] * c2[1] + q1[2] * c2[2]) + q1[4] * c2[4])) * sc;
-  double const rn1 = dot(r, n1), rm = dot(r, m), rn2 = dot(r, n2);
+  V const t1 = ((c1[0] * q2[0] + c1[3] * q2[3]) + c1[5] * q2[5] +
+                2.0 * ((c1[1] * q2[1] + c1[2] * q2[2]) + c1[4] * q2[4])) * sc;
+  V const t2 = ((q1[0] * c2[0] + q1[3] * c2[3]) + q1[5] * c2[5] +
+                2.0 * ((q1[1] * c2[1] + q1[2] * c2[2]) + q1[4] * c2[4])) * sc;
+  V const rn1 = dot(r, n1), rm = dot(r, m), rn2 = dot(r, n2);
   // The x^0 and x^1 terms of (Q1 + x Q2) adj(Q1 + x Q2) = det(Q1 + x Q2) I
   // give Q1 n1 = det1 r and Q1 m = t1 r - Q2 n1; likewise Q2 n2 = det2 r
   // and Q2 m = t2 r - Q1 n2: two products Q_i v remain.
-  Vec3 const p = multiply(q2, n1), q = multiply(q1, n2);
-  double const mp = dot(m, p) * sc, mq = dot(m, q) * sc;
+  Vc const p = multiply(q2, n1), q = multiply(q1, n2);
+  V const mp = dot(m, p) * sc, mq = dot(m, q) * sc;
   // c_ik (scaled): a1 = n1.Q1n1 + 2x m.Q1n1 + x^2 (m.Q1m + 2 n2.Q1n1) + 2x^3 n2.Q1m + x^4 n2.Q1n2.
   sq.a1[0] = det1 * rn1;
   sq.a1[1] = 2.0 * det1 * rm;
