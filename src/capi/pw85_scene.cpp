@@ -353,81 +353,82 @@ void fill_nan_result(pw85_result *res, int method) noexcept {
   res->method = method;
 }
 
-// DEFAULT for pairs k0 ... k0 + kDefaultLanes - 1 through the lanes of
+// Pairs k0 ... k0 + kDefaultLanes - 1 and DEFAULT for them in the lanes of
 // default_lanes (docs/batch.md, "Throughput"): pair(k, buf, r12, q1, q2)
 // gives pair k's arguments (as for overlap_block; false: the pair fails with
-// PW85_ERR_INVALID_ARGUMENT); a lane that default_lanes leaves undecided is
-// computed by pw85_contact_function_method. Writes res[k] and st[k - k0] as
-// the one-pair loop would.
+// PW85_ERR_INVALID_ARGUMENT, and its lane gets zeros, which default_lanes
+// never decides).
+struct DefaultLanes {
+  static constexpr int w = pw85::kDefaultLanes;
+  double buf[w][3];
+  double const *r[w], *q1[w], *q2[w];
+  bool ok[w];
+  pw85::MethodResult res[w];
+  int status[w];  // pw85::kLaneUndecided: the one-pair call decides
+};
+
+template <class Pair>
+void default_lanes_of(long long k0, Pair pair, DefaultLanes &dl) noexcept {
+  static constexpr double kZero[6] = {0, 0, 0, 0, 0, 0};
+  for (int l = 0; l < DefaultLanes::w; ++l) {
+    dl.ok[l] = pair(k0 + l, dl.buf[l], dl.r[l], dl.q1[l], dl.q2[l]);
+    if (!dl.ok[l]) dl.r[l] = dl.q1[l] = dl.q2[l] = kZero;
+  }
+  pw85::default_lanes(dl.r, dl.q1, dl.q2, dl.res, dl.status);
+}
+
+// DEFAULT for pairs k0 ... k0 + kDefaultLanes - 1 (default_lanes_of); a
+// lane that default_lanes leaves undecided is computed by
+// pw85_contact_function_method. Writes res[k] and st[k - k0] as the
+// one-pair loop would.
 template <class Pair>
 void default_block(long long k0, Pair pair, pw85_result *res, int st[]) noexcept {
-  constexpr int w = pw85::kDefaultLanes;
-  static constexpr double kZero[6] = {0, 0, 0, 0, 0, 0};  // r = 0: never decided by the lanes
-  double buf[w][3];
-  double const *rp[w], *q1p[w], *q2p[w];
-  bool ok[w];
-  for (int l = 0; l < w; ++l) {
-    ok[l] = pair(k0 + l, buf[l], rp[l], q1p[l], q2p[l]);
-    if (!ok[l]) rp[l] = q1p[l] = q2p[l] = kZero;
-  }
-  pw85::MethodResult mr[w];
-  int ls[w];
-  pw85::default_lanes(rp, q1p, q2p, mr, ls);
-  for (int l = 0; l < w; ++l) {
+  DefaultLanes dl;
+  default_lanes_of(k0, pair, dl);
+  for (int l = 0; l < DefaultLanes::w; ++l) {
     pw85_result &o = res[k0 + l];
-    if (!ok[l]) {
+    if (!dl.ok[l]) {
       fill_nan_result(&o, PW85_METHOD_DEFAULT);
       st[l] = PW85_ERR_INVALID_ARGUMENT;
-    } else if (ls[l] != pw85::kLaneUndecided) {
-      o.mu2 = mr[l].mu2;
-      o.lambda = mr[l].lambda;
-      o.mu2_error = mr[l].mu2_error;
-      o.iterations = mr[l].iterations;
-      o.method = mr[l].method;
-      st[l] = ls[l];
+    } else if (dl.status[l] != pw85::kLaneUndecided) {
+      o.mu2 = dl.res[l].mu2;
+      o.lambda = dl.res[l].lambda;
+      o.mu2_error = dl.res[l].mu2_error;
+      o.iterations = dl.res[l].iterations;
+      o.method = dl.res[l].method;
+      st[l] = dl.status[l];
     } else {
-      st[l] = pw85_contact_function_method(rp[l], q1p[l], q2p[l], PW85_METHOD_DEFAULT, &o);
+      st[l] = pw85_contact_function_method(dl.r[l], dl.q1[l], dl.q2[l], PW85_METHOD_DEFAULT, &o);
     }
   }
 }
 
 // pw85_contact_derivatives for pairs k0 ... k0 + kDefaultLanes - 1, with
-// DEFAULT from the lanes of default_lanes: a lane that default_lanes
-// decides with a solution (PW85_OK, PW85_ERR_INACCURATE), of magnitudes
-// that pw85_contact_derivatives takes without rescaling, continues from
-// that solution (contact_derivatives_from_default: the one-pair call's
-// bits); the other lanes make the one-pair call. pair(): as for
-// default_block.
+// DEFAULT from default_lanes_of: a lane that default_lanes decides with a
+// solution (PW85_OK, PW85_ERR_INACCURATE), of magnitudes that
+// pw85_contact_derivatives takes without rescaling, continues from that
+// solution (contact_derivatives_from_default: the one-pair call's bits);
+// the other lanes make the one-pair call.
 template <class Pair>
 void derivatives_block(long long k0, Pair pair, pw85_derivatives_t *d, int st[]) noexcept {
-  constexpr int w = pw85::kDefaultLanes;
-  static constexpr double kZero[6] = {0, 0, 0, 0, 0, 0};
-  double buf[w][3];
-  double const *rp[w], *q1p[w], *q2p[w];
-  bool ok[w];
-  for (int l = 0; l < w; ++l) {
-    ok[l] = pair(k0 + l, buf[l], rp[l], q1p[l], q2p[l]);
-    if (!ok[l]) rp[l] = q1p[l] = q2p[l] = kZero;
-  }
-  pw85::MethodResult mr[w];
-  int ls[w];
-  pw85::default_lanes(rp, q1p, q2p, mr, ls);
-  for (int l = 0; l < w; ++l) {
+  DefaultLanes dl;
+  default_lanes_of(k0, pair, dl);
+  for (int l = 0; l < DefaultLanes::w; ++l) {
     pw85_derivatives_t &o = d[k0 + l];
-    if (!ok[l]) {
+    if (!dl.ok[l]) {
       fill_nan(&o.mu2, 29);
       st[l] = PW85_ERR_INVALID_ARGUMENT;
       continue;
     }
-    pw85::Vec3 const r = pw85::load_vec3(rp[l]);
-    pw85::Sym3 const a = pw85::load_sym3(q1p[l]), b = pw85::load_sym3(q2p[l]);
-    if ((ls[l] == PW85_OK || ls[l] == PW85_ERR_INACCURATE) &&
-        pw85::derivatives_from_default_ok(r, a, b)) {
+    pw85::Vec3 const r = pw85::load_vec3(dl.r[l]);
+    pw85::Sym3 const a = pw85::load_sym3(dl.q1[l]), b = pw85::load_sym3(dl.q2[l]);
+    int const s = dl.status[l];
+    if ((s == PW85_OK || s == PW85_ERR_INACCURATE) && pw85::derivatives_from_default_ok(r, a, b)) {
       pw85::Derivatives out;
-      st[l] = pw85::contact_derivatives_from_default(r, a, b, pw85::Status(ls[l]), mr[l], out);
+      st[l] = pw85::contact_derivatives_from_default(r, a, b, pw85::Status(s), dl.res[l], out);
       std::memcpy(&o, &out, sizeof out);
     } else {
-      st[l] = pw85_contact_derivatives(rp[l], q1p[l], q2p[l], &o);
+      st[l] = pw85_contact_derivatives(dl.r[l], dl.q1[l], dl.q2[l], &o);
     }
   }
 }
@@ -556,6 +557,32 @@ inline bool scene_pair(long long n, double const *centres, double const *q, Box 
   return true;
 }
 
+// Pair k of per-pair arrays, for the lane blocks (default_block,
+// derivatives_block).
+struct ArrayPair {
+  double const *r12, *q1, *q2;
+  bool operator()(long long k, double *, double const *&r, double const *&a,
+                  double const *&b) const noexcept {
+    r = r12 + 3 * k;
+    a = q1 + 6 * k;
+    b = q2 + 6 * k;
+    return true;
+  }
+};
+
+// Pair k of a scene (scene_pair), for the lane blocks.
+struct ScenePair {
+  long long n;
+  double const *centres, *q;
+  Box const &box;
+  long long const *pairs;
+  long long m;
+  bool operator()(long long k, double *buf, double const *&r, double const *&a,
+                  double const *&b) const noexcept {
+    return scene_pair(n, centres, q, box, pairs, m, k, buf, r, a, b);
+  }
+};
+
 // The loop of the pw85_scene_* functions after their argument checks:
 // one(k, r12, i, j) computes pair k (r12 == nullptr: the pair failed
 // scene_r12) and returns its status.
@@ -585,11 +612,7 @@ int scene_overlap(long long n, double const *centres, double const *q, Box const
     overlap[k] = res;
     return res < 0 ? res : PW85_OK;
   };
-  auto pair = [&](long long k, double *buf, double const *&r, double const *&a,
-                  double const *&b) noexcept {
-    return scene_pair(n, centres, q, box, pairs, m, k, buf, r, a, b);
-  };
-  return run_overlap(m, status, nthreads, pair, overlap, one);
+  return run_overlap(m, status, nthreads, ScenePair{n, centres, q, box, pairs, m}, overlap, one);
 }
 
 inline bool scene_args(long long n, double const *centres, double const *q, double const *box,
@@ -639,16 +662,7 @@ int pw85_contact_function_pairs(long long m, double const *r12, double const *q1
   if (method != PW85_METHOD_DEFAULT)
     return run_pairs(m, status, nthreads, 64, one);
   auto block = [&](long long k0, int st[]) noexcept {
-    default_block(
-        k0,
-        [&](long long k, double *, double const *&r, double const *&a,
-            double const *&b) noexcept {
-          r = r12 + 3 * k;
-          a = q1 + 6 * k;
-          b = q2 + 6 * k;
-          return true;
-        },
-        res, st);
+    default_block(k0, ArrayPair{r12, q1, q2}, res, st);
   };
   return run_blocks<pw85::kDefaultLanes>(m, status, nthreads, kDefaultChunk, block, one);
 }
@@ -705,13 +719,7 @@ int pw85_scene_contact_function(long long n, double const *centres, double const
     return one_r12(k, s == PW85_OK ? r12 : nullptr, i, j);
   };
   auto block = [&](long long k0, int st[]) noexcept {
-    default_block(
-        k0,
-        [&](long long k, double *buf, double const *&r, double const *&a,
-            double const *&c) noexcept {
-          return scene_pair(n, centres, q, b, pairs, m, k, buf, r, a, c);
-        },
-        res, st);
+    default_block(k0, ScenePair{n, centres, q, b, pairs, m}, res, st);
   };
   return run_blocks<pw85::kDefaultLanes>(m, status, nthreads, kDefaultChunk, block, one);
 }
@@ -727,16 +735,7 @@ int pw85_contact_derivatives_pairs(long long m, double const *r12, double const 
     return pw85_contact_derivatives(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k, d + k);
   };
   auto block = [&](long long k0, int st[]) noexcept {
-    derivatives_block(
-        k0,
-        [&](long long k, double *, double const *&r, double const *&a,
-            double const *&b) noexcept {
-          r = r12 + 3 * k;
-          a = q1 + 6 * k;
-          b = q2 + 6 * k;
-          return true;
-        },
-        d, st);
+    derivatives_block(k0, ArrayPair{r12, q1, q2}, d, st);
   };
   return run_blocks<pw85::kDefaultLanes>(m, status, nthreads, kDefaultChunk, block, one);
 }
@@ -771,13 +770,7 @@ int pw85_scene_contact_derivatives(long long n, double const *centres, double co
     return int{PW85_ERR_INVALID_ARGUMENT};
   };
   auto block = [&](long long k0, int st[]) noexcept {
-    derivatives_block(
-        k0,
-        [&](long long k, double *buf, double const *&r, double const *&a,
-            double const *&c) noexcept {
-          return scene_pair(n, centres, q, b, pairs, m, k, buf, r, a, c);
-        },
-        d, st);
+    derivatives_block(k0, ScenePair{n, centres, q, b, pairs, m}, d, st);
   };
   return run_blocks<pw85::kDefaultLanes>(m, status, nthreads, kDefaultChunk, block, one);
 }
