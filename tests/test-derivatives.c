@@ -583,7 +583,7 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact_derivatives/spheres", test_spheres);
   g_test_add_func("/pw85_contact_derivatives/scaling", test_scaling);
   g_test_add_func("/pw85_contact_derivatives/bad-input", test_bad_input);
-  g_test_add_func("/pw85_contact_derivatives/batch", test_batch);
-  g_test_add_func("/pw85_contact_derivatives/batch-lanes", test_batch_lanes);
+  g_test_add_func("/pw85_contact_derivatives/batch/forms", test_batch);
+  g_test_add_func("/pw85_contact_derivatives/batch/lanes", test_batch_lanes);
   return g_test_run();
 }
