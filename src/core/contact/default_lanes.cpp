@@ -27,6 +27,7 @@
 #include "contact/rational_step.hpp"
 #include "contact/start.hpp"
 #include "contact/start_lanes.hpp"
+#include "eval/f_adj.hpp"
 #include "eval/f_dd.hpp"
 
 namespace pw85 {
@@ -93,65 +94,8 @@ PW85_ALWAYS_INLINE V default_start(T const &r, S const &q1, S const &q2) noexcep
   return out;
 }
 
-// f_adj.hpp: f_eval_adj with set_f_from_phi (f_derivatives.hpp).
-struct E {
-  V lambda, phi, dphi, f, df, d2f, d3f, d4f, inv_det;
-  S q;
-  T s;
-};
-
-PW85_ALWAYS_INLINE M f_eval_adj(V lambda, T const &r, S const &q1, S const &q2, S const &d,
-                                E &e) noexcept {
-  e.lambda = lambda;
-  e.q = interpolate(q1, q2, lambda);
-  S const &q = e.q;
-  S const c = adjugate3(q);
-  V const det = det_with_adjugate(q, c);
-  T const s0 = multiply(c, r);
-  T const u0 = multiply(d, s0);
-  T const v0 = multiply(c, u0);
-  T const w0 = multiply(d, v0);
-  T const x0 = multiply(c, w0);
-  V const id = 1.0 / det, id2 = id * id;
-  e.inv_det = id;
-  V const id3 = id2 * id, id4 = id2 * id2;
-  e.s = T{{s0[0] * id, s0[1] * id, s0[2] * id}};
-  V const phi = dot(r, s0) * id;
-  V const phi1 = -dot(s0, u0) * id2;
-  V const phi2 = 2.0 * dot(u0, v0) * id3;
-  V const phi3 = -6.0 * dot(v0, w0) * id4;
-  V const phi4 = 24.0 * dot(w0, x0) * (id4 * id);
-  // set_f_from_phi
-  V const p = lambda * (1.0 - lambda);
-  V const p1 = 1.0 - 2.0 * lambda;
-  e.phi = phi;
-  e.dphi = phi1;
-  e.f = p * phi;
-  e.df = p1 * phi + p * phi1;
-  e.d2f = -2.0 * phi + 2.0 * p1 * phi1 + p * phi2;
-  e.d3f = -6.0 * phi1 + 3.0 * p1 * phi2 + p * phi3;
-  e.d4f = -12.0 * phi2 + 4.0 * (1.0 - 2.0 * lambda) * phi3 + lambda * (1.0 - lambda) * phi4;
-  return (det > 0.0) & (phi > 0.0) & finite(e.f) & finite(e.df) & finite(e.d2f) &
-         finite(e.d3f) & finite(e.d4f);
-}
-
-// f_adj.hpp: adj_error.
-PW85_ALWAYS_INLINE T adj_error(E const &e, T const &r, S const &q1, S const &q2) noexcept {
-  S qa;
-  V const lm = 1.0 - e.lambda;
-  for (int i = 0; i < kSym; ++i) qa[i] = lm * vabs(q1[i]) + e.lambda * vabs(q2[i]);
-  S const aa{{qa[3] * qa[5] + qa[4] * qa[4], qa[2] * qa[4] + qa[1] * qa[5],
-              qa[1] * qa[4] + qa[2] * qa[3], qa[0] * qa[5] + qa[2] * qa[2],
-              qa[1] * qa[2] + qa[0] * qa[4], qa[0] * qa[3] + qa[1] * qa[1]}};
-  V const det_abs = qa[0] * aa[0] + qa[1] * aa[1] + qa[2] * aa[2];
-  V const k = 4.0 * kU * e.inv_det;
-  V const rel_det = k * det_abs;
-  T const ar{{vabs(r[0]), vabs(r[1]), vabs(r[2])}};
-  T const t = multiply(aa, ar);
-  T err;
-  for (int i = 0; i < kDim; ++i) err[i] = k * t[i] + rel_det * vabs(e.s[i]);
-  return err;
-}
+// f_adj.hpp: f_eval_adj and adj_error for these lanes.
+typedef AdjEvalOf<V, S, T> E;
 
 // The body, compiled once per instruction-set level below.
 PW85_ALWAYS_INLINE void lanes_body(double const *const rp[W], double const *const q1p[W],

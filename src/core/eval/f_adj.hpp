@@ -7,22 +7,39 @@
 #pragma once
 
 #include <cmath>
+#include <type_traits>
 
 #include "common/fp.hpp"
 #include "eval/f_derivatives.hpp"
 #include "common/isa.hpp"
+#include "common/lanes.hpp"
 #include "common/sym3.hpp"
 
 namespace pw85 {
 
-struct AdjEval {
-  double lambda;
-  double phi, dphi;
-  double f, df, d2f, d3f, d4f;
-  double det, inv_det;  // inv_det = fl(1 / det)
-  Sym3 q, adj;
-  Vec3 s;
+// One pair (AdjEval), or one pair per vector lane (V a lanes::VecD, S and T
+// start_lanes.hpp's SymL and Vec3L: contact/default_lanes.cpp), with the
+// same operations in the same order in f_eval_adj and adj_error below.
+template <class V, class S, class T>
+struct AdjEvalOf {
+  V lambda;
+  V phi, dphi;
+  V f, df, d2f, d3f, d4f;
+  V det, inv_det;  // inv_det = fl(1 / det)
+  S q, adj;
+  T s;
 };
+using AdjEval = AdjEvalOf<double, Sym3, Vec3>;
+
+namespace adj_detail {
+template <class V>
+PW85_ALWAYS_INLINE V abs_of(V x) noexcept {
+  if constexpr (std::is_same_v<V, double>)
+    return std::fabs(x);
+  else
+    return lanes::vabs(x);
+}
+}  // namespace adj_detail
 
 // f and its first four derivatives at lambda. The dependency chain of (M16)
 // is kept short: the products with C = adj Q are formed unnormalised
@@ -34,58 +51,64 @@ struct AdjEval {
 // d/dlambda Q^{-1} = -Q^{-1} D Q^{-1}); f = p phi with p = lambda (1 - lambda)
 // by Leibniz's rule (p' = 1 - 2 lambda, p'' = -2), eq. (M18):
 //   f'''' = p phi'''' + 4 p' phi''' - 12 phi''.
-PW85_ALWAYS_INLINE bool f_eval_adj(double lambda, Vec3 const &r, Sym3 const &q1,
-                                   Sym3 const &q2, Sym3 const &d, AdjEval &e) noexcept {
+// Returns whether the evaluation succeeded (one pair: a bool; lanes: a mask).
+template <class V, class S, class T>
+PW85_ALWAYS_INLINE auto f_eval_adj(V lambda, T const &r, S const &q1, S const &q2, S const &d,
+                                   AdjEvalOf<V, S, T> &e) noexcept {
   e.lambda = lambda;
   e.q = interpolate(q1, q2, lambda);
-  Sym3 const &q = e.q;
+  S const &q = e.q;
   e.adj = adjugate3(q);
-  Sym3 const &c = e.adj;
-  double const det = det_with_adjugate(q, c);
+  S const &c = e.adj;
+  V const det = det_with_adjugate(q, c);
   e.det = det;
-  Vec3 const s0 = multiply(c, r);   // det s
-  Vec3 const u0 = multiply(d, s0);  // det u
-  Vec3 const v0 = multiply(c, u0);  // det^2 v
-  Vec3 const w0 = multiply(d, v0);  // det^2 w
-  Vec3 const x0 = multiply(c, w0);  // det^3 Q^{-1} w
-  double const id = 1.0 / det, id2 = id * id;
+  T const s0 = multiply(c, r);   // det s
+  T const u0 = multiply(d, s0);  // det u
+  T const v0 = multiply(c, u0);  // det^2 v
+  T const w0 = multiply(d, v0);  // det^2 w
+  T const x0 = multiply(c, w0);  // det^3 Q^{-1} w
+  V const id = 1.0 / det, id2 = id * id;
   e.inv_det = id;
-  double const id3 = id2 * id, id4 = id2 * id2;
-  e.s = Vec3{{s0[0] * id, s0[1] * id, s0[2] * id}};
-  double const phi = dot(r, s0) * id;
-  double const phi1 = -dot(s0, u0) * id2;
-  double const phi2 = 2.0 * dot(u0, v0) * id3;
-  double const phi3 = -6.0 * dot(v0, w0) * id4;
-  double const phi4 = 24.0 * dot(w0, x0) * (id4 * id);
+  V const id3 = id2 * id, id4 = id2 * id2;
+  e.s = T{{s0[0] * id, s0[1] * id, s0[2] * id}};
+  V const phi = dot(r, s0) * id;
+  V const phi1 = -dot(s0, u0) * id2;
+  V const phi2 = 2.0 * dot(u0, v0) * id3;
+  V const phi3 = -6.0 * dot(v0, w0) * id4;
+  V const phi4 = 24.0 * dot(w0, x0) * (id4 * id);
   set_f_from_phi(lambda, phi, phi1, phi2, phi3, e);
   e.d4f = -12.0 * phi2 + 4.0 * (1.0 - 2.0 * lambda) * phi3 + lambda * (1.0 - lambda) * phi4;
-  return det > 0.0 && phi > 0.0 && std::isfinite(e.f) && std::isfinite(e.df) &&
-         std::isfinite(e.d2f) && std::isfinite(e.d3f) && std::isfinite(e.d4f);
+  if constexpr (std::is_same_v<V, double>)
+    return det > 0.0 && phi > 0.0 && std::isfinite(e.f) && std::isfinite(e.df) &&
+           std::isfinite(e.d2f) && std::isfinite(e.d3f) && std::isfinite(e.d4f);
+  else
+    return (det > 0.0) & (phi > 0.0) & lanes::finite(e.f) & lanes::finite(e.df) &
+           lanes::finite(e.d2f) & lanes::finite(e.d3f) & lanes::finite(e.d4f);
 }
 
 // Componentwise bound (first order in u) on the error of the computed s
 // (eq. (M17)): rounding of Q(lambda) (u |Q|), of the adjugate (2u per
 // entry, relative to the sum of the absolute values of its two products), of
 // det and of the products adj r / det.
-PW85_ALWAYS_INLINE Vec3 adj_error(AdjEval const &e, Vec3 const &r, Sym3 const &q1,
-                                  Sym3 const &q2) noexcept {
-  Sym3 const &q = e.q;
-  Sym3 qa;
-  double const lm = 1.0 - e.lambda;
-  for (int i = 0; i < kSym; ++i) qa[i] = lm * std::fabs(q1[i]) + e.lambda * std::fabs(q2[i]);
+template <class V, class S, class T>
+PW85_ALWAYS_INLINE T adj_error(AdjEvalOf<V, S, T> const &e, T const &r, S const &q1,
+                               S const &q2) noexcept {
+  using adj_detail::abs_of;
+  S qa;
+  V const lm = 1.0 - e.lambda;
+  for (int i = 0; i < kSym; ++i) qa[i] = lm * abs_of(q1[i]) + e.lambda * abs_of(q2[i]);
   // Sums of absolute values of the products of each adjugate entry.
-  Sym3 const aa{{qa[3] * qa[5] + qa[4] * qa[4], qa[2] * qa[4] + qa[1] * qa[5],
-                 qa[1] * qa[4] + qa[2] * qa[3], qa[0] * qa[5] + qa[2] * qa[2],
-                 qa[1] * qa[2] + qa[0] * qa[4], qa[0] * qa[3] + qa[1] * qa[1]}};
-  double const det_abs = qa[0] * aa[0] + qa[1] * aa[1] + qa[2] * aa[2];
+  S const aa{{qa[3] * qa[5] + qa[4] * qa[4], qa[2] * qa[4] + qa[1] * qa[5],
+              qa[1] * qa[4] + qa[2] * qa[3], qa[0] * qa[5] + qa[2] * qa[2],
+              qa[1] * qa[2] + qa[0] * qa[4], qa[0] * qa[3] + qa[1] * qa[1]}};
+  V const det_abs = qa[0] * aa[0] + qa[1] * aa[1] + qa[2] * aa[2];
   // 1/det from the evaluation (its rounding, 1u, is inside the factor 4).
-  double const k = 4.0 * kU * e.inv_det;
-  double const rel_det = k * det_abs;
-  Vec3 const ar{{std::fabs(r[0]), std::fabs(r[1]), std::fabs(r[2])}};
-  Vec3 const t = multiply(aa, ar);
-  Vec3 err;
-  for (int i = 0; i < kDim; ++i) err[i] = k * t[i] + rel_det * std::fabs(e.s[i]);
-  (void)q;
+  V const k = 4.0 * kU * e.inv_det;
+  V const rel_det = k * det_abs;
+  T const ar{{abs_of(r[0]), abs_of(r[1]), abs_of(r[2])}};
+  T const t = multiply(aa, ar);
+  T err;
+  for (int i = 0; i < kDim; ++i) err[i] = k * t[i] + rel_det * abs_of(e.s[i]);
   return err;
 }
 
