@@ -173,9 +173,10 @@ PW85_ALWAYS_INLINE void gather(double const *const p[W], VecD<W> out[N]) noexcep
 }
 
 // The same helpers for one pair (T = double), so that code templated on the
-// vector type (eval/f_rational_dd.hpp, contact/rational_step.hpp) serves the
-// one-pair path too.
+// vector type (eval/f_rational_dd.hpp, contact/rational_step.hpp,
+// contact/start.hpp, eval/f_adj.hpp) serves the one-pair path too.
 PW85_ALWAYS_INLINE double vabs(double x) noexcept { return std::fabs(x); }
+PW85_ALWAYS_INLINE double vsqrt(double x) noexcept { return std::sqrt(x); }
 PW85_ALWAYS_INLINE double select(bool m, double a, double b) noexcept { return m ? a : b; }
 PW85_ALWAYS_INLINE bool finite(double x) noexcept { return std::isfinite(x); }
 PW85_ALWAYS_INLINE bool any(bool m) noexcept { return m; }

@@ -5,7 +5,6 @@
 #pragma once
 
 #include <cmath>
-#include <type_traits>
 
 #include "common/isa.hpp"
 #include "common/lanes.hpp"
@@ -55,14 +54,6 @@ PW85_ALWAYS_INLINE Vc tree_times(Sy const &c, Vc const &r) noexcept {
 template <class Sy, class Vc>
 PW85_ALWAYS_INLINE Vc adj_times(Sy const &q, Vc const &r) noexcept {
   return tree_times(adjugate3(q), r);
-}
-
-template <class V>
-PW85_ALWAYS_INLINE V square_root(V x) noexcept {
-  if constexpr (std::is_same_v<V, double>)
-    return std::sqrt(x);
-  else
-    return lanes::vsqrt(x);
 }
 
 }  // namespace detail
@@ -175,7 +166,7 @@ PW85_ALWAYS_INLINE void start_quartics(Vc const &r, Sy const &q1, Sy const &q2,
   V sc = V{} + 1.0;
   sq.x0 = V{};
   if constexpr (kScaled) {
-    sq.x0 = detail::square_root(s1 / s2);
+    sq.x0 = lanes::vsqrt(s1 / s2);
     sc = 1.0 / (s1 + s2);
   }
   V const det1 = det_with_adjugate(q1, c1) * sc;

@@ -31,16 +31,6 @@ struct AdjEvalOf {
 };
 using AdjEval = AdjEvalOf<double, Sym3, Vec3>;
 
-namespace adj_detail {
-template <class V>
-PW85_ALWAYS_INLINE V abs_of(V x) noexcept {
-  if constexpr (std::is_same_v<V, double>)
-    return std::fabs(x);
-  else
-    return lanes::vabs(x);
-}
-}  // namespace adj_detail
-
 // f and its first four derivatives at lambda. The dependency chain of (M16)
 // is kept short: the products with C = adj Q are formed unnormalised
 // (C r = det s, D C r = det u, C D C r = det^2 v, ...) and the powers of
@@ -93,10 +83,10 @@ PW85_ALWAYS_INLINE auto f_eval_adj(V lambda, T const &r, S const &q1, S const &q
 template <class V, class S, class T>
 PW85_ALWAYS_INLINE T adj_error(AdjEvalOf<V, S, T> const &e, T const &r, S const &q1,
                                S const &q2) noexcept {
-  using adj_detail::abs_of;
+  using lanes::vabs;
   S qa;
   V const lm = 1.0 - e.lambda;
-  for (int i = 0; i < kSym; ++i) qa[i] = lm * abs_of(q1[i]) + e.lambda * abs_of(q2[i]);
+  for (int i = 0; i < kSym; ++i) qa[i] = lm * vabs(q1[i]) + e.lambda * vabs(q2[i]);
   // Sums of absolute values of the products of each adjugate entry.
   S const aa{{qa[3] * qa[5] + qa[4] * qa[4], qa[2] * qa[4] + qa[1] * qa[5],
               qa[1] * qa[4] + qa[2] * qa[3], qa[0] * qa[5] + qa[2] * qa[2],
@@ -105,10 +95,10 @@ PW85_ALWAYS_INLINE T adj_error(AdjEvalOf<V, S, T> const &e, T const &r, S const 
   // 1/det from the evaluation (its rounding, 1u, is inside the factor 4).
   V const k = 4.0 * kU * e.inv_det;
   V const rel_det = k * det_abs;
-  T const ar{{abs_of(r[0]), abs_of(r[1]), abs_of(r[2])}};
+  T const ar{{vabs(r[0]), vabs(r[1]), vabs(r[2])}};
   T const t = multiply(aa, ar);
   T err;
-  for (int i = 0; i < kDim; ++i) err[i] = k * t[i] + rel_det * abs_of(e.s[i]);
+  for (int i = 0; i < kDim; ++i) err[i] = k * t[i] + rel_det * vabs(e.s[i]);
   return err;
 }
 
