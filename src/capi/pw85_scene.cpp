@@ -583,18 +583,25 @@ struct ScenePair {
   }
 };
 
-// The loop of the pw85_scene_* functions after their argument checks:
-// one(k, r12, i, j) computes pair k (r12 == nullptr: the pair failed
-// scene_r12) and returns its status.
+// Pair k of a scene through one(k, r12, i, j), which computes it (r12 ==
+// nullptr: the pair failed scene_r12) and returns its status.
+template <class One>
+int scene_one(long long n, double const *centres, double const *q, Box const &box,
+              long long const *pairs, long long k, One &one) noexcept {
+  double r12[3];
+  long long i, j;
+  int const s = scene_r12(n, centres, q, box, pairs, k, r12, i, j);
+  return one(k, s == PW85_OK ? r12 : nullptr, i, j);
+}
+
+// The loop of the pw85_scene_* functions after their argument checks, pair
+// by pair through scene_one.
 template <class One>
 int scene(long long n, double const *centres, double const *q, Box const &box, long long m,
           long long const *pairs, int *status, int nthreads, int chunk, One one) noexcept {
   return run_pairs(m, status, nthreads, chunk, [&](long long k) noexcept {
     prefetch_pair(n, centres, q, pairs, m, k);
-    double r12[3];
-    long long i, j;
-    int const s = scene_r12(n, centres, q, box, pairs, k, r12, i, j);
-    return one(k, s == PW85_OK ? r12 : nullptr, i, j);
+    return scene_one(n, centres, q, box, pairs, k, one);
   });
 }
 
@@ -712,12 +719,7 @@ int pw85_scene_contact_function(long long n, double const *centres, double const
   };
   if (method != PW85_METHOD_DEFAULT)
     return scene(n, centres, q, b, m, pairs, status, nthreads, 64, one_r12);
-  auto one = [&](long long k) noexcept {
-    double r12[3];
-    long long i, j;
-    int const s = scene_r12(n, centres, q, b, pairs, k, r12, i, j);
-    return one_r12(k, s == PW85_OK ? r12 : nullptr, i, j);
-  };
+  auto one = [&](long long k) noexcept { return scene_one(n, centres, q, b, pairs, k, one_r12); };
   auto block = [&](long long k0, int st[]) noexcept {
     default_block(k0, ScenePair{n, centres, q, b, pairs, m}, res, st);
   };
@@ -761,14 +763,12 @@ int pw85_scene_contact_derivatives(long long n, double const *centres, double co
   Box b;
   if (!scene_args(n, centres, q, box, m, pairs, d, nthreads, b))
     return PW85_ERR_INVALID_ARGUMENT;
-  auto one = [&](long long k) noexcept {
-    double r12[3];
-    long long i, j;
-    if (scene_r12(n, centres, q, b, pairs, k, r12, i, j) == PW85_OK)
-      return pw85_contact_derivatives(r12, q + 6 * i, q + 6 * j, d + k);
+  auto one_r12 = [&](long long k, double const *r12, long long i, long long j) noexcept {
+    if (r12) return pw85_contact_derivatives(r12, q + 6 * i, q + 6 * j, d + k);
     fill_nan(&d[k].mu2, 29);
     return int{PW85_ERR_INVALID_ARGUMENT};
   };
+  auto one = [&](long long k) noexcept { return scene_one(n, centres, q, b, pairs, k, one_r12); };
   auto block = [&](long long k0, int st[]) noexcept {
     derivatives_block(k0, ScenePair{n, centres, q, b, pairs, m}, d, st);
   };
