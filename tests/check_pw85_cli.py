@@ -131,6 +131,23 @@ def main():
                       "1.2", "0", "0", "0.5", "1.5", "1", "0", "0"])
     check(rc == 1, f"--spheroids overlapping: exit 1 (got {rc})")
 
+    # too few numbers: the message says how many the option needs and how
+    # many it got (counted up to the next option)
+    for args, option, need, got in ((["--spheroids", "0", "0", "0", "1", "2"], "--spheroids", 16, 5),
+                                    (["--spheroids", "0", "0", "0", "1", "2", "--method", "brent"],
+                                     "--spheroids", 16, 5),
+                                    (["--method", "brent", "--spheroids"], "--spheroids", 16, 0),
+                                    (["--matrices", "1", "2"], "--matrices", 15, 2),
+                                    (["--matrices"] + ["1"] * 14, "--matrices", 15, 14)):
+        rc, out, err = run(args)
+        check(rc == 2 and err.startswith(f"pw85: {option} needs {need} numbers (")
+              and err.splitlines()[0].endswith(f"got {got}") and "unexpected argument" not in err,
+              f"{args}: exit 2, '{option} needs {need} numbers ... got {got}' (got {rc}, {err!r})")
+    for args in (["--batch", "-", "--spheroids"] + ["1"] * 16, ["--matrices"] + ["1"] * 15 + ["--batch"]):
+        rc, out, err = run(args, stdin=b"")
+        check(rc == 2 and "only one of --spheroids, --matrices and --batch" in err,
+              f"{args[:3]}...: exit 2, one mode only (got {rc}, {err!r})")
+
     # batch: good and bad lines, comments, both formats
     rng = np.random.default_rng(43)
     lines, expect = [], {}
@@ -160,6 +177,12 @@ def main():
         rc2, out2, err2 = run(["--batch"], stdin=text.encode())
         rc3, out3, _ = run(["--batch", "-"], stdin=text.encode())
     check(rc == 3 and rc2 == 3 and out == out2 == out3, f"batch with bad lines: exit 3 ({rc}, {rc2}, {rc3})")
+    nonblank_lines = sum(1 for l in lines if l.split("#")[0].strip())
+    check(f"pw85: {len(bad_lines)} of {nonblank_lines} lines failed\n" in err,
+          f"batch: '{len(bad_lines)} of {nonblank_lines} lines failed' (got {err.splitlines()[-1]!r})")
+    zero_q = lines.index("0 0 0 1 1 1 0 0 0 0 1 0 0 1 1 1 1 0 0 0") + 1
+    check(f"pw85: line {zero_q}: the quaternion of ellipsoid 1 is zero" in err and "NULL pointer" not in err,
+          f"batch: the zero quaternion of line {zero_q} named as such")
     rows = out.splitlines()
     check(rows[0] == "line,mu2,lambda,overlap,status", "batch: CSV header")
     for b in bad_lines:
@@ -195,6 +218,34 @@ def main():
                      "3", "0.1", "0", "0.5", "1.5", "1", "0", "0"])
     mu2 = float(out.splitlines()[1].split(",")[1])
     check(abs(mu2 - value(one, "mu^2")) <= 1e-14 * mu2, "quaternion (w, x, y, z) convention against --spheroids")
+
+    # the count of failed lines: a one-line file (a non-SPD matrix), lines
+    # among blank and comment lines
+    bad_spd = "3 0 0 -1 0 0 1 0 1 1 0 0 1 0 1\n"
+    rc, out, err = run(["--batch"], stdin=bad_spd.encode())
+    check(rc == 3 and err.endswith("pw85: 1 of 1 lines failed\n") and "positive definite" in err,
+          f"one non-SPD line: exit 3, '1 of 1 lines failed' (got {rc}, {err!r})")
+    good_line = "3 0 0 1 0 0 1 0 1 1 0 0 1 0 1\n"
+    text = "# pairs\n\n" + good_line + bad_spd + "\n" + good_line + "   # only a comment\n"
+    rc, out, err = run(["--batch"], stdin=text.encode())
+    check(rc == 3 and err.endswith("pw85: 1 of 3 lines failed\n") and len(out.splitlines()) == 4,
+          f"1 bad of 3 pair lines among blank and comment lines: '1 of 3 lines failed' (got {err!r})")
+
+    # quaternions: zero, NaN or infinite named in the message, scaled ones
+    # (down to 1e-300, up to 1e300) the same pair as the unit one
+    pair = "0 0 0 0.5 0.5 1.5 {} {} {} {}  1.2 0.3 0 0.5 0.5 1.5 1 0 0 0\n"
+    for quat, what in (((0, 0, 0, 0), "is zero"), (("nan", 0, 1, 0), "is not a number"),
+                       ((1, "inf", 0, 0), "has an infinite component")):
+        rc, out, err = run(["--batch"], stdin=pair.format(*quat).encode())
+        check(rc == 3 and f"pw85: line 1: the quaternion of ellipsoid 1 {what}" in err
+              and "NULL pointer" not in err and out.splitlines()[1].endswith(",-1"),
+              f"quaternion {quat}: exit 3, message '{what}', status -1 (got {rc}, {err!r})")
+    unit_row = run(["--batch"], stdin=pair.format(s, 0, s, 0).encode())[1].splitlines()[1]
+    for scale in (1e-300, 1e-160, 3.0, 1e160, 1e300):
+        rc, out, err = run(["--batch"], stdin=pair.format(scale, 0, scale, 0).encode())
+        row = out.splitlines()[1].split(",")
+        check(rc == 0 and abs(float(row[1]) - float(unit_row.split(",")[1])) <= 1e-15 * float(row[1]),
+              f"quaternion scaled by {scale}: the unit quaternion's mu^2 (got {rc}, {row}, {err!r})")
 
     # garbage never crashes: every non-blank line is a row or a message
     rnd = random.Random(20261125)

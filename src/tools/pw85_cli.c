@@ -13,6 +13,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -74,14 +75,34 @@ static void print_matrix(const char *name, const double q[PW85_SYM]) {
 
 /* Quadratic form of an ellipsoid with semi-axes radii along the body axes
  * and orientation the quaternion (w, x, y, z) (HOOMD-blue/GSD order) of any
- * non-zero length: divided by its length here, then pw85_ellipsoid_quat.
- * Returns PW85_ERR_INVALID_ARGUMENT for a zero or non-finite quaternion,
- * otherwise the status of pw85_ellipsoid_quat. */
-static int ellipsoid_from_quaternion(const double radii[3], const double quat[4], double q[6]) {
-  double const norm = sqrt(quat[0] * quat[0] + quat[1] * quat[1] + quat[2] * quat[2] +
-                           quat[3] * quat[3]);
-  if (!(norm > 0.0) || !isfinite(norm)) return PW85_ERR_INVALID_ARGUMENT;
-  double const unit[4] = {quat[0] / norm, quat[1] / norm, quat[2] / norm, quat[3] / norm};
+ * non-zero finite length: divided by its length here (first by its largest
+ * component when the sum of squares overflows or underflows), then
+ * pw85_ellipsoid_quat. For a zero, NaN or infinite quaternion: returns
+ * PW85_ERR_INVALID_ARGUMENT and sets *problem to what is wrong with it (for
+ * the caller's message); otherwise the status of pw85_ellipsoid_quat. */
+static int ellipsoid_from_quaternion(const double radii[3], const double quat[4], double q[6],
+                                     const char **problem) {
+  double largest = 0.0;
+  int nan_component = 0;
+  for (int k = 0; k < 4; k++) {
+    nan_component |= isnan(quat[k]);
+    largest = fmax(largest, fabs(quat[k]));
+  }
+  *problem = nan_component ? "is not a number (NaN component)"
+             : largest == 0.0 ? "is zero (w = x = y = z = 0): no rotation"
+             : isinf(largest) ? "has an infinite component"
+                              : NULL;
+  if (*problem) return PW85_ERR_INVALID_ARGUMENT;
+  double scaled[4] = {quat[0], quat[1], quat[2], quat[3]};
+  double norm2 = scaled[0] * scaled[0] + scaled[1] * scaled[1] + scaled[2] * scaled[2] +
+                 scaled[3] * scaled[3];
+  if (!isfinite(norm2) || norm2 < DBL_MIN) {
+    for (int k = 0; k < 4; k++) scaled[k] = quat[k] / largest;
+    norm2 = scaled[0] * scaled[0] + scaled[1] * scaled[1] + scaled[2] * scaled[2] +
+            scaled[3] * scaled[3];
+  }
+  double const norm = sqrt(norm2);
+  double const unit[4] = {scaled[0] / norm, scaled[1] / norm, scaled[2] / norm, scaled[3] / norm};
   return pw85_ellipsoid_quat(radii, unit, q);
 }
 
@@ -126,17 +147,18 @@ static int run_batch(const char *path, int method) {
   char *line = NULL;
   size_t cap = 0;
   ssize_t len;
-  long lineno = 0, failed = 0, pairs = 0;
+  long lineno = 0, failed = 0, counted = 0; /* counted: non-blank lines */
   while ((len = getline(&line, &cap, in)) != -1) {
     lineno++;
     if ((size_t)len != strlen(line)) {
       fprintf(stderr, "pw85: line %ld: contains a NUL byte\n", lineno);
-      failed++;
+      counted++, failed++;
       continue;
     }
     double v[20];
     int const n = parse_line(line, v, 20);
     if (n == 0) continue;
+    counted++;
     if (n != 15 && n != 20) {
       if (n == -1)
         fprintf(stderr, "pw85: line %ld: not a number\n", lineno);
@@ -149,15 +171,19 @@ static int run_batch(const char *path, int method) {
       continue;
     }
     double r12[3], q1[6], q2[6];
-    int status = PW85_OK;
+    int status = PW85_OK, which = 1;
+    const char *quaternion_problem = NULL;
     if (n == 15) {
       memcpy(r12, v, sizeof r12);
       memcpy(q1, v + 3, sizeof q1);
       memcpy(q2, v + 9, sizeof q2);
     } else {
       for (int d = 0; d < 3; d++) r12[d] = v[10 + d] - v[d];
-      status = ellipsoid_from_quaternion(v + 3, v + 6, q1);
-      if (status == PW85_OK) status = ellipsoid_from_quaternion(v + 13, v + 16, q2);
+      status = ellipsoid_from_quaternion(v + 3, v + 6, q1, &quaternion_problem);
+      if (status == PW85_OK) {
+        which = 2;
+        status = ellipsoid_from_quaternion(v + 13, v + 16, q2, &quaternion_problem);
+      }
     }
     pw85_result res = {NAN, NAN, NAN, 0, method};
     int overlap = -1;
@@ -166,12 +192,15 @@ static int run_batch(const char *path, int method) {
       overlap = pw85_overlap(r12, q1, q2);
       if (status == PW85_OK && overlap < 0) status = overlap;
     }
-    pairs++;
     if (overlap >= 0)
       printf("%ld,%.17g,%.17g,%d,%d\n", lineno, res.mu2, res.lambda, overlap, status);
     else
       printf("%ld,%.17g,%.17g,,%d\n", lineno, res.mu2, res.lambda, status);
-    if (status != PW85_OK) {
+    if (quaternion_problem) {
+      fprintf(stderr, "pw85: line %ld: the quaternion of ellipsoid %d %s\n", lineno, which,
+              quaternion_problem);
+      failed++;
+    } else if (status != PW85_OK) {
       fprintf(stderr, "pw85: line %ld: %s\n", lineno, pw85_strerror(status));
       failed++;
     }
@@ -179,16 +208,13 @@ static int run_batch(const char *path, int method) {
   int const read_error = ferror(in);
   free(line);
   if (in != stdin) fclose(in);
-  if (read_error) {
-    fprintf(stderr, "pw85: read error after line %ld\n", lineno);
-    failed++;
-  }
+  if (read_error) fprintf(stderr, "pw85: read error after line %ld\n", lineno);
   if (fflush(stdout) != 0 || ferror(stdout)) {
     fprintf(stderr, "pw85: write error\n");
     return EXIT_FAILED;
   }
-  if (failed) fprintf(stderr, "pw85: %ld of %ld lines failed\n", failed, pairs + failed);
-  return failed ? EXIT_FAILED : EXIT_APART;
+  if (failed) fprintf(stderr, "pw85: %ld of %ld lines failed\n", failed, counted);
+  return failed || read_error ? EXIT_FAILED : EXIT_APART;
 }
 
 int main(int argc, char **argv) {
@@ -219,21 +245,37 @@ int main(int argc, char **argv) {
                 name);
         return EXIT_USAGE;
       }
-    } else if (!strcmp(a, "--batch") && !have_pair && !batch) {
+    } else if ((!strcmp(a, "--batch") || !strcmp(a, "--spheroids") || !strcmp(a, "--matrices")) &&
+               (have_pair || batch)) {
+      fprintf(stderr, "pw85: %s: only one of --spheroids, --matrices and --batch may be given\n",
+              a);
+      return EXIT_USAGE;
+    } else if (!strcmp(a, "--batch")) {
       batch = 1;
       if (i + 1 < argc && (strncmp(argv[i + 1], "--", 2) != 0)) batch_path = argv[++i];
-    } else if (!strcmp(a, "--spheroids") && !have_pair && !batch && i + 16 < argc) {
-      if (parse(16, argv + i + 1, v) != 0) return EXIT_USAGE;
-      have_pair = 1;
-      i += 16;
-    } else if (!strcmp(a, "--matrices") && !have_pair && !batch && i + 15 < argc) {
-      double m[15];
-      if (parse(15, argv + i + 1, m) != 0) return EXIT_USAGE;
-      memcpy(r12, m, sizeof r12);
-      memcpy(q1, m + 3, sizeof q1);
-      memcpy(q2, m + 9, sizeof q2);
-      have_pair = 2;
-      i += 15;
+    } else if (!strcmp(a, "--spheroids") || !strcmp(a, "--matrices")) {
+      int const spheroids = !strcmp(a, "--spheroids"), needed = spheroids ? 16 : 15;
+      int given = 0; /* the arguments up to the next option */
+      while (given < needed && i + 1 + given < argc && strncmp(argv[i + 1 + given], "--", 2) != 0)
+        given++;
+      if (given < needed) {
+        fprintf(stderr, "pw85: %s needs %d numbers (%s), got %d\n", a, needed,
+                spheroids ? "X1 Y1 Z1 A1 C1 NX1 NY1 NZ1 X2 Y2 Z2 A2 C2 NX2 NY2 NZ2"
+                          : "RX RY RZ Q1_00 Q1_01 Q1_02 Q1_11 Q1_12 Q1_22 Q2_00 ... Q2_22",
+                given);
+        return EXIT_USAGE;
+      }
+      double m[16];
+      if (parse(needed, argv + i + 1, m) != 0) return EXIT_USAGE;
+      if (spheroids) {
+        memcpy(v, m, sizeof v);
+      } else {
+        memcpy(r12, m, sizeof r12);
+        memcpy(q1, m + 3, sizeof q1);
+        memcpy(q2, m + 9, sizeof q2);
+      }
+      have_pair = spheroids ? 1 : 2;
+      i += needed;
     } else {
       fprintf(stderr, "pw85: unexpected argument '%s'\n", a);
       usage(stderr);
