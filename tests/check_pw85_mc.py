@@ -4,7 +4,8 @@ tuning, nematic order parameter.
 
 usage: check_pw85_mc.py PW85_MC PW85
 
-The GSD file is read back with python3-gsd (its C reader gsd.fl through
+The GSD file (a frame at sweep 0 and one per block, S2 logged as
+log/pw85/S2) is read back with python3-gsd (its C reader gsd.fl through
 gsd.hoomd, and its pure-Python reader gsd.pygsd); the XYZ file is parsed
 here. No pair of the last XYZ frame (doubles) may overlap, checked by the
 pw85 program's batch mode (exact predicate, mu^2 >= 1); the GSD frame
@@ -127,7 +128,9 @@ def main():
 
         # XYZ
         frames = read_xyz(xyz)
-        check(len(frames) == 4, f"XYZ: 4 frames (got {len(frames)})")
+        check(len(frames) == 5 and [h.split("sweep=")[1].split()[0] for h, _ in frames] == ["0", "2", "4", "6", "8"],
+              f"XYZ: 5 frames, sweep 0 and 4 blocks (got {len(frames)})")
+        xyz_s2 = [float(re.search(r" S2=(\S+)$", h).group(1)) for h, _ in frames]
         header, rows = frames[-1]
         m = re.match(r'Lattice="(\S+) 0 0 0 (\S+) 0 0 0 (\S+)" pbc="T T T" '
                      r"Properties=species:S:1:pos:R:3:orientation:R:4:aspherical_shape:R:3 "
@@ -148,8 +151,10 @@ def main():
 
         # GSD, C reader through gsd.hoomd and pure-Python reader
         with gsd.hoomd.open(gsdf, "rb") as traj:
-            check(len(traj) == 4, f"GSD: 4 frames (got {len(traj)})")
-            f0, f3 = traj[0], traj[3]
+            check(len(traj) == 5, f"GSD: 5 frames, sweep 0 and 4 blocks (got {len(traj)})")
+            f0, f3 = traj[0], traj[4]
+            logged_s2 = [traj[k].log.get("pw85/S2") for k in range(len(traj))]
+            frame_s2 = [s2_of(np.array(traj[k].particles.orientation, float)) for k in range(len(traj))]
             steps = [int(traj[k].configuration.step) for k in range(len(traj))]
             gpos, gq = np.array(f3.particles.position, float), np.array(f3.particles.orientation, float)
             gbox = np.array(f3.configuration.box, float)
@@ -158,10 +163,16 @@ def main():
                             | np.any(np.array(f0.particles.orientation) != f3.particles.orientation, axis=1))
         with gsd.pygsd.GSDFile(open(gsdf, "rb")) as g:
             py = gsd.hoomd.HOOMDTrajectory(g)
-            check(len(py) == 4 and np.array_equal(py[3].particles.position, gpos.astype(np.float32))
+            check(len(py) == 5 and np.array_equal(py[4].particles.position, gpos.astype(np.float32))
                   and g.schema == "hoomd" and g.gsd_version == (2, 0),
                   "GSD: the pure-Python reader reads the same file")
-        check(steps == [2, 4, 6, 8], f"GSD: steps {steps}")
+        check(steps == [0, 2, 4, 6, 8], f"GSD: steps {steps}")
+        check(all(v is not None and v.shape == (1,) and v.dtype == np.float64 for v in logged_s2),
+              "GSD: log/pw85/S2 in every frame, one float64")
+        if all(v is not None for v in logged_s2):
+            check([float(v[0]) for v in logged_s2] == xyz_s2, f"GSD log/pw85/S2 = XYZ S2= ({xyz_s2})")
+            check(max(abs(float(v[0]) - f) for v, f in zip(logged_s2, frame_s2)) < 1e-6,
+                  "GSD log/pw85/S2 vs numpy over the frame's (float32) orientations")
         check(n == 300 and types == ["E"] and np.all(np.asarray(typeid) == 0), "GSD: N, types, typeid")
         check(np.allclose(gbox, [box, box, box, 0, 0, 0], rtol=1e-7, atol=0), f"GSD: box {gbox} vs {box}")
         check(shapes == [{"type": "Ellipsoid", "a": 0.5, "b": 0.5, "c": 1.5}], f"GSD: type_shapes {shapes}")
@@ -181,6 +192,18 @@ def main():
         print(f"XYZ: {len(rows)} pairs closer than {cutoff}, min mu^2 {min(float(r[1]) for r in rows):.6f}")
         rc, rows = batch(pair_lines(gpos, [0.5, 0.5, 1.5], gq, gbox[0], cutoff))
         check(rc == 0 and all(float(r[1]) > 1 - 1e-4 for r in rows), "GSD: no pair with mu^2 < 1 - 1e-4")
+
+    # --sweeps 0: one frame, sweep 0, the configuration after equilibration
+    with tempfile.TemporaryDirectory() as d:
+        gsdf = os.path.join(d, "c.gsd")
+        rc, out, _ = run(["--n", "300", "--equil", "3", "--sweeps", "0", "--gsd", gsdf])
+        with gsd.hoomd.open(gsdf, "rb") as traj:
+            steps = [int(f.configuration.step) for f in traj]
+            s2 = [float(f.log["pw85/S2"][0]) for f in traj]
+            orientation = np.array(traj[0].particles.orientation, float)
+        check(rc == 0 and steps == [0] and abs(s2[0] - s2_of(orientation)) < 1e-6
+              and np.any(np.abs(orientation[:, 1:]) > 1e-3),
+              f"--sweeps 0: one frame at sweep 0, after the equilibration turned the axes (steps {steps})")
 
     # step tuning reaches the target acceptance
     for target in ("0.3", "0.5"):

@@ -24,8 +24,10 @@
  * the largest eigenvalue of the order tensor Qt = (1/N) sum (3 u u^T - I) / 2
  * of the symmetry axes u (the long axis of prolate, the short axis of oblate
  * spheroids; 0 <= S2 <= 1 since tr Qt = 0; about 1/sqrt(N) for N isotropic
- * axes). --xyz and --gsd write the configuration at the end of each block
- * (extended XYZ for OVITO, GSD for HOOMD-blue). Prints the number of overlap
+ * axes). --xyz and --gsd write the configuration at production sweep 0
+ * (after equilibration) and at the end of each block (extended XYZ for
+ * OVITO, GSD for HOOMD-blue; S2 of the configuration in both, in the GSD
+ * file as log/pw85/S2). Prints the number of overlap
  * tests per second of the production loop, then checks with
  * pw85_contact_function_batch over every neighbour pair that no pair has
  * mu^2 < 1 (and with pw85_overlap_batch that no pair overlaps).
@@ -154,7 +156,8 @@ static void usage(FILE *out) {
           "Monte Carlo of N hard spheroids (semi-axes 0.5, 0.5, 0.5 * C_OVER_A) at packing\n"
           "fraction PHI: E sweeps tuning the steps to acceptance ACC (default 0.3), then\n"
           "S sweeps with fixed steps reported in B blocks (acceptance, nematic order S2);\n"
-          "--xyz/--gsd write the configuration after each block (extended XYZ, GSD);\n"
+          "--xyz/--gsd write the configuration at sweep 0 (after equilibration) and after\n"
+          "each block (extended XYZ, GSD; S2 in both, in GSD as log/pw85/S2);\n"
           "--progress reports on stderr (default when stderr is a terminal).\n"
           "Defaults: --n 1000 --sweeps 20 --equil 10 --blocks 4 --seed 1 --aspect 3\n"
           "--phi 0.2 --threads 0 (all). Exit status: 0 no overlapping pair at the end,\n"
@@ -239,43 +242,17 @@ static int write_xyz(FILE *f, const scene_t *s, long long sweep, double s2) {
   return (fflush(f) != 0 || ferror(f)) ? -1 : 0;
 }
 
-/* GSD frame (HOOMD schema): step, float32 positions in [-L/2, L/2)^3 and
- * quaternions (w, x, y, z); the first frame also holds the box, N, the type
- * "E" and its shape {"type": "Ellipsoid", "a", "b", "c"} (semi-axes), which
- * HOOMD readers carry over to the later frames. */
-static int write_gsd(gsd_writer *w, const scene_t *s, uint64_t sweep, float *buf) {
-  int rc = gsd_chunk(w, "configuration/step", GSD_UINT64, 1, 1, &sweep);
-  float const half = (float)(0.5 * s->L);
-  if (w->frame == 0) {
-    float const box[6] = {(float)s->L, (float)s->L, (float)s->L, 0.0f, 0.0f, 0.0f};
-    uint32_t const n = (uint32_t)s->n;
-    char shape[160];
-    int const len = snprintf(shape, sizeof shape,
-                             "{\"type\": \"Ellipsoid\", \"a\": %.9g, \"b\": %.9g, \"c\": %.9g}",
-                             s->a, s->a, s->c);
-    rc |= gsd_chunk(w, "configuration/box", GSD_FLOAT, 6, 1, box);
-    rc |= gsd_chunk(w, "particles/N", GSD_UINT32, 1, 1, &n);
-    rc |= gsd_chunk(w, "particles/types", GSD_INT8, 1, 2, "E");
-    rc |= gsd_chunk(w, "particles/type_shapes", GSD_INT8, 1, (uint32_t)len + 1, shape);
-    uint32_t *typeid = (uint32_t *)buf; /* all 0 */
-    memset(typeid, 0, (size_t)s->n * sizeof *typeid);
-    rc |= gsd_chunk(w, "particles/typeid", GSD_UINT32, (uint64_t)s->n, 1, typeid);
-  }
-  for (int i = 0; i < s->n; ++i)
-    for (int d = 0; d < 3; ++d) {
-      float p = (float)(s->x[3 * i + d] - 0.5 * s->L);
-      if (p >= half) p = -half;
-      buf[3 * i + d] = p;
-    }
-  rc |= gsd_chunk(w, "particles/position", GSD_FLOAT, (uint64_t)s->n, 3, buf);
-  for (int i = 0; i < s->n; ++i) {
-    double q[4];
-    axis_quaternion(s->u + 3 * i, q);
-    for (int k = 0; k < 4; ++k) buf[4 * i + k] = (float)q[k];
-  }
-  rc |= gsd_chunk(w, "particles/orientation", GSD_FLOAT, (uint64_t)s->n, 4, buf);
-  gsd_end_frame(w);
-  return rc ? -1 : 0;
+static const char *const gsd_logged[] = {"log/pw85/S2"};
+
+/* GSD frame (HOOMD schema, gsd_write_frame): positions, the quaternions
+ * (w, x, y, z) of axis_quaternion, the semi-axes (a, a, c) and S2 logged
+ * as log/pw85/S2. quat: 4n doubles, buf: 4n floats of scratch. */
+static int write_gsd(gsd_writer *w, const scene_t *s, uint64_t sweep, double s2, double *quat,
+                     float *buf) {
+  for (int i = 0; i < s->n; ++i) axis_quaternion(s->u + 3 * i, quat + 4 * i);
+  gsd_frame const frame = {sweep, (uint32_t)s->n, s->L, {s->a, s->a, s->c}, s->x, quat, 1,
+                           gsd_logged, &s2};
+  return gsd_write_frame(w, &frame, buf);
 }
 
 /* One trial move of particle i: a rotation (rotate = 1) or a translation.
@@ -441,7 +418,7 @@ int main(int argc, char **argv) {
   if (gsd_path) {
     char app[64];
     snprintf(app, sizeof app, "pw85_mc %s", pw85_version());
-    if (gsd_open(&gsd, gsd_path, app) != 0) {
+    if (gsd_open(&gsd, gsd_path, app, gsd_logged, 1) != 0) {
       fprintf(stderr, "pw85_mc: cannot write '%s': %s\n", gsd_path, strerror(errno));
       if (xyz) fclose(xyz);
       return 2;
@@ -454,11 +431,12 @@ int main(int argc, char **argv) {
   s.q = malloc(6 * (size_t)n * sizeof(double));
   s.cell_of = malloc((size_t)n * sizeof(int));
   float *fbuf = malloc(4 * (size_t)n * sizeof(float));
+  double *qbuf = malloc(4 * (size_t)n * sizeof(double));
   int const ncells = s.nc * s.nc * s.nc;
   s.members = calloc((size_t)ncells, sizeof(int *));
   s.count = calloc((size_t)ncells, sizeof(int));
   s.cap = calloc((size_t)ncells, sizeof(int));
-  if (!s.x || !s.u || !s.q || !s.cell_of || !fbuf || !s.members || !s.count || !s.cap) return 2;
+  if (!s.x || !s.u || !s.q || !s.cell_of || !fbuf || !qbuf || !s.members || !s.count || !s.cap) return 2;
   for (int i = 0; i < n; ++i) {
     int const iz = i / (nxy * nxy), iy = (i / nxy) % nxy, ix = i % nxy;
     s.x[3 * i] = (ix + 0.5) * s.L / nxy;
@@ -485,7 +463,13 @@ int main(int argc, char **argv) {
   if (equil == 0)
     printf("equilibration: none; translation dr = %.4g, rotation dtheta = %.4g\n", dr, dtheta);
   prog.t0 = prog.last = now();
-  for (long long sw = 0; sw < total && !lib_error; ++sw) {
+  for (long long sw = 0; sw <= total && !lib_error; ++sw) {
+    if (sw == equil) { /* the frame of sweep 0: the start of production */
+      double const s2 = order_parameter(&s);
+      if (xyz && write_xyz(xyz, &s, 0, s2) != 0) file_error = 1;
+      if (have_gsd && write_gsd(&gsd, &s, 0, s2, qbuf, fbuf) != 0) file_error = 1;
+    }
+    if (sw == total) break;
     int const production = sw >= equil;
     long long att[2] = {0, 0}, acc[2] = {0, 0}, sweep_tests = 0;
     double const t0 = now();
@@ -535,7 +519,7 @@ int main(int argc, char **argv) {
                blk_att[1] ? (double)blk_acc[1] / (double)blk_att[1] : 0.0, blk_s2 / (double)nsw,
                s2);
         if (xyz && write_xyz(xyz, &s, done, s2) != 0) file_error = 1;
-        if (have_gsd && write_gsd(&gsd, &s, (uint64_t)done, fbuf) != 0) file_error = 1;
+        if (have_gsd && write_gsd(&gsd, &s, (uint64_t)done, s2, qbuf, fbuf) != 0) file_error = 1;
         blk++, blk_first = done + 1, blk_s2 = 0.0;
         blk_att[0] = blk_att[1] = blk_acc[0] = blk_acc[1] = 0;
       }
@@ -547,13 +531,8 @@ int main(int argc, char **argv) {
     if (xyz) fclose(xyz);
     if (have_gsd) gsd_close(&gsd);
     free_scene(&s, ncells);
-    free(fbuf);
+    free(fbuf), free(qbuf);
     return 2;
-  }
-  if (sweeps == 0) {
-    double const s2 = order_parameter(&s);
-    if (xyz && write_xyz(xyz, &s, 0, s2) != 0) file_error = 1;
-    if (have_gsd && write_gsd(&gsd, &s, 0, fbuf) != 0) file_error = 1;
   }
   if (xyz && fclose(xyz) != 0) file_error = 1;
   if (have_gsd && gsd_close(&gsd) != 0) file_error = 1;
@@ -622,7 +601,7 @@ int main(int argc, char **argv) {
   printf("%s\n", rc == 0 ? "OK: no overlapping pair" : "FAILED");
 
   free_scene(&s, ncells);
-  free(fbuf);
+  free(fbuf), free(qbuf);
   free(pairs), free(img), free(centres), free(qall), free(out), free(ov), free(status);
   return rc;
 }
