@@ -24,6 +24,8 @@ import numpy as np
 import gsd.hoomd
 import gsd.pygsd
 
+from demo_pairs import batch, pair_lines, rotate
+
 MC, CLI = sys.argv[1], sys.argv[2]
 FAILURES = []
 
@@ -39,17 +41,9 @@ def run(args):
     return r.returncode, r.stdout, r.stderr
 
 
-def hamilton(p, q):
-    w1, x1, y1, z1 = p
-    w2, x2, y2, z2 = q
-    return np.array([w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2, w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
-                     w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2, w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2])
-
-
 def axis(q_wxyz):
     """The body z axis q e_z q* in the lab frame."""
-    conj = q_wxyz * np.array([1, -1, -1, -1])
-    return hamilton(hamilton(q_wxyz, [0.0, 0.0, 0.0, 1.0]), conj)[1:]
+    return rotate(q_wxyz, [0.0, 0.0, 1.0])
 
 
 def s2_of(quats_wxyz):
@@ -79,27 +73,6 @@ def block_lines(out):
 
 def production_acceptance(out):
     return float(re.search(r"acceptance rate (\S+),", out).group(1))
-
-
-def pair_lines(centres, radii, quats_wxyz, box, cutoff):
-    """20-number batch lines (c1, radii, quat, c2 = minimum image, radii, quat)."""
-    lines = []
-    n = len(centres)
-    for i in range(n):
-        d = centres - centres[i]
-        d -= box * np.round(d / box)
-        close = np.nonzero(np.einsum("ij,ij->i", d, d) < cutoff ** 2)[0]
-        for j in close[close > i]:
-            c2 = centres[i] + d[j]
-            nums = list(centres[i]) + list(radii) + list(quats_wxyz[i]) + list(c2) + list(radii) + list(quats_wxyz[j])
-            lines.append(" ".join(repr(float(x)) for x in nums))
-    return lines
-
-
-def batch(lines):
-    r = subprocess.run([CLI, "--batch"], input="\n".join(lines) + "\n", capture_output=True, text=True)
-    rows = [l.split(",") for l in r.stdout.splitlines()[1:]]
-    return r.returncode, rows
 
 
 def main():
@@ -186,11 +159,11 @@ def main():
 
         # no overlapping pair: exact on the XYZ doubles, loosely on the GSD floats
         cutoff = 2 * 1.5
-        rc, rows = batch(pair_lines(pos, [0.5, 0.5, 1.5], q_wxyz, box, cutoff))
+        rc, rows = batch(CLI, pair_lines(pos, [0.5, 0.5, 1.5], q_wxyz, box, cutoff)[0])
         check(rc == 0 and len(rows) > 300 and all(r[4] == "0" and r[3] == "0" and float(r[1]) >= 1.0 for r in rows),
               f"XYZ: no overlap among {len(rows)} close pairs (exit {rc})")
         print(f"XYZ: {len(rows)} pairs closer than {cutoff}, min mu^2 {min(float(r[1]) for r in rows):.6f}")
-        rc, rows = batch(pair_lines(gpos, [0.5, 0.5, 1.5], gq, gbox[0], cutoff))
+        rc, rows = batch(CLI, pair_lines(gpos, [0.5, 0.5, 1.5], gq, gbox[0], cutoff)[0])
         check(rc == 0 and all(float(r[1]) > 1 - 1e-4 for r in rows), "GSD: no pair with mu^2 < 1 - 1e-4")
 
     # --sweeps 0: one frame, sweep 0, the configuration after equilibration

@@ -3,7 +3,7 @@
  *
  *   pw85_edmd [--shape sphere|spheroid|ellipsoid | --axes A B C] [--n N] [--phi PHI]
  *             [--collisions C] [--equil E] [--blocks B] [--seed SEED]
- *             [--check] [--check-every K] [--cs] [--miss M]
+ *             [--check] [--check-every K] [--cs] [--miss M] [--gsd FILE] [--help]
  *
  * N identical hard ellipsoids (semi-axes 0.5^3, (0.5, 0.5, 1), (0.4, 0.7, 1)
  * or A, B, C in (1e-3, 1e3)), mass 1 and isotropic moment of inertia
@@ -28,8 +28,12 @@
  * |Z / Z_CS - 1| <= 1 % (Carnahan-Starling, M6; spheres). --miss M (fault
  * injection, for the test that the checks fail): every M-th
  * pw85_contact_time result is replaced by "no contact".
- * Exit status 1 when --check is given and a check fails, 2 on bad usage or
- * a library error, 0 otherwise. */
+ * --gsd: the trajectory as a GSD file (HOOMD schema, gsd_write.h), a frame
+ * at the start and at the end of each block, step the number of
+ * collisions, the time logged as log/pw85/time.
+ * Exit status 1 when --check is given and a check fails, 2 on bad usage,
+ * a library error or a file that cannot be written, 0 otherwise. */
+#include <errno.h>
 #include <math.h>
 #include <pw85.h>
 #include <stdint.h>
@@ -37,7 +41,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "demo_args.h"
 #include "demo_rng.h"
+#include "gsd_write.h"
 
 enum { EV_NONE, EV_COLLISION, EV_CROSS, EV_REPREDICT };
 
@@ -433,11 +439,54 @@ static void totals(const sim_t *s, double *ktrans, double *krot, double p[3], do
 
 /* ---- set-up and main loop --------------------------------------------------- */
 
-static void usage(const char *prog) {
-  fprintf(stderr,
-          "usage: %s [--shape sphere|spheroid|ellipsoid | --axes A B C] [--n N] [--phi PHI] [--collisions C] "
-          "[--equil E] [--blocks B] [--seed SEED] [--check] [--check-every K] [--cs] [--miss M]\n",
-          prog);
+static const char *const gsd_logged[] = {"log/pw85/time"};
+
+/* A GSD frame of the scene at s->tnow (gsd_write_frame): centres, the
+ * quaternions of the orientations, the time. c: 3n doubles, quat: 4n
+ * doubles, buf: 4n floats of scratch. */
+static int write_frame(gsd_writer *w, const sim_t *s, const double axes[3], double *c,
+                       double *quat, float *buf) {
+  for (int i = 0; i < s->n; i++) {
+    double a[9];
+    state_at(s, i, s->tnow, c + 3 * i, a, NULL);
+    gsd_quaternion_of_rotation(a, quat + 4 * i);
+  }
+  gsd_frame const frame = {(uint64_t)s->collisions, (uint32_t)s->n, s->L, {axes[0], axes[1], axes[2]},
+                           c, quat, 1, gsd_logged, &s->tnow};
+  return gsd_write_frame(w, &frame, buf);
+}
+
+static void usage(FILE *out) {
+  fprintf(out,
+          "usage: pw85_edmd [--shape sphere|spheroid|ellipsoid | --axes A B C] [--n N]\n"
+          "                 [--phi PHI] [--collisions C] [--equil E] [--blocks B]\n"
+          "                 [--seed SEED] [--check] [--check-every K] [--cs] [--miss M]\n"
+          "                 [--gsd FILE] [--help]\n"
+          "Event-driven molecular dynamics of N hard ellipsoids (pw85_contact_time):\n"
+          "collisions predicted and resolved exactly, pressure from the collision virial.\n"
+          "  --shape S        sphere (semi-axes 0.5 0.5 0.5), spheroid (0.5 0.5 1, the\n"
+          "                   default) or ellipsoid (0.4 0.7 1)\n"
+          "  --axes A B C     any semi-axes, each in (1e-3, 1e3)\n"
+          "  --n N            number of ellipsoids, >= 8 (default 256)\n"
+          "  --phi PHI        packing fraction, in (0, 0.5) (default 0.3)\n"
+          "  --collisions C   collisions measured, >= B (default 10000)\n"
+          "  --equil E        collisions of equilibration before them (default 0)\n"
+          "  --blocks B       blocks of the pressure average, >= 2 (default 10)\n"
+          "  --seed SEED      seed of the initial velocities (default 1)\n"
+          "  --check          exit 1 when a check fails (overlap after an event, mu^2 at\n"
+          "                   contact, conservation per collision and in total)\n"
+          "  --check-every K  checks every pair of the scene every K events (default 1)\n"
+          "  --cs             also checks the pressure of spheres against\n"
+          "                   Carnahan-Starling to 1 %%\n"
+          "  --miss M         fault injection: drops every M-th predicted contact (for\n"
+          "                   the test that the checks fail)\n"
+          "  --gsd FILE       writes the trajectory (GSD, HOOMD schema: positions,\n"
+          "                   orientations, type_shapes ellipsoid; a frame at the start\n"
+          "                   and at the end of each block, step = collisions, the time\n"
+          "                   as log/pw85/time)\n"
+          "  --help           this text\n"
+          "Exit status: 0 success, 1 a --check failed, 2 bad usage, a library error or a\n"
+          "file that cannot be written.\n");
 }
 
 int main(int argc, char **argv) {
@@ -447,26 +496,62 @@ int main(int argc, char **argv) {
   const char *shape = "spheroid";
   double axes[3] = {0.0, 0.0, 0.0};
   uint64_t seed = 1;
+  const char *gsd_path = NULL;
   for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--check")) check = 1;
-    else if (!strcmp(argv[i], "--cs")) cs = 1;
-    else if (i + 1 < argc && !strcmp(argv[i], "--shape")) shape = argv[++i];
-    else if (i + 3 < argc && !strcmp(argv[i], "--axes")) {
+    const char *o = argv[i], *arg = i + 1 < argc ? argv[i + 1] : NULL;
+    long value = 0;
+    int bad = 0, takes = 1;
+    if (!strcmp(o, "--help") || !strcmp(o, "-h")) {
+      usage(stdout);
+      return 0;
+    } else if (!strcmp(o, "--check")) {
+      check = 1, takes = 0;
+    } else if (!strcmp(o, "--cs")) {
+      cs = 1, takes = 0;
+    } else if (!strcmp(o, "--shape")) {
+      bad = !arg;
+      shape = arg;
+    } else if (!strcmp(o, "--axes")) {
       shape = "custom";
-      for (int d = 0; d < 3; d++) axes[d] = atof(argv[++i]);
-    }
-    else if (i + 1 < argc && !strcmp(argv[i], "--n")) n = atoi(argv[++i]);
-    else if (i + 1 < argc && !strcmp(argv[i], "--phi")) phi = atof(argv[++i]);
-    else if (i + 1 < argc && !strcmp(argv[i], "--collisions")) ncoll = atoll(argv[++i]);
-    else if (i + 1 < argc && !strcmp(argv[i], "--equil")) nequil = atoll(argv[++i]);
-    else if (i + 1 < argc && !strcmp(argv[i], "--blocks")) blocks = atoi(argv[++i]);
-    else if (i + 1 < argc && !strcmp(argv[i], "--check-every")) check_every = atoi(argv[++i]);
-    else if (i + 1 < argc && !strcmp(argv[i], "--miss")) miss = atoll(argv[++i]);
-    else if (i + 1 < argc && !strcmp(argv[i], "--seed")) seed = strtoull(argv[++i], NULL, 10);
-    else {
-      usage(argv[0]);
+      for (int d = 0; d < 3 && !bad; d++)
+        bad = i + 1 + d >= argc || parse_double(argv[i + 1 + d], 1e-3, 1e3, &axes[d]);
+      takes = 3;
+    } else if (!strcmp(o, "--n")) {
+      bad = !arg || parse_long(arg, 8, 10000000, &value);
+      n = (int)value;
+    } else if (!strcmp(o, "--phi")) {
+      bad = !arg || parse_double(arg, 1e-9, 0.5, &phi) || phi == 0.5;
+    } else if (!strcmp(o, "--collisions")) {
+      bad = !arg || parse_long(arg, 1, 1000000000000L, &value);
+      ncoll = value;
+    } else if (!strcmp(o, "--equil")) {
+      bad = !arg || parse_long(arg, 0, 1000000000000L, &value);
+      nequil = value;
+    } else if (!strcmp(o, "--miss")) {
+      bad = !arg || parse_long(arg, 0, 1000000000000L, &value);
+      miss = value;
+    } else if (!strcmp(o, "--blocks")) {
+      bad = !arg || parse_long(arg, 2, 1000000000, &value);
+      blocks = (int)value;
+    } else if (!strcmp(o, "--check-every")) {
+      bad = !arg || parse_long(arg, 1, 1000000000, &value);
+      check_every = (int)value;
+    } else if (!strcmp(o, "--seed")) {
+      bad = !arg || parse_seed(arg, &seed);
+    } else if (!strcmp(o, "--gsd")) {
+      bad = !arg;
+      gsd_path = arg;
+    } else {
+      fprintf(stderr, "pw85_edmd: unknown option '%s'\n", o);
+      usage(stderr);
       return 2;
     }
+    if (bad) {
+      fprintf(stderr, "pw85_edmd: bad or missing value for %s\n", o);
+      usage(stderr);
+      return 2;
+    }
+    i += takes;
   }
   if (!strcmp(shape, "custom")) {
     for (int d = 0; d < 3; d++)
@@ -476,9 +561,13 @@ int main(int argc, char **argv) {
   else if (!strcmp(shape, "ellipsoid")) axes[0] = 0.4, axes[1] = 0.7, axes[2] = 1.0;
   else
     shape = "";
-  if (!*shape || n < 8 || n > 10000000 || ncoll < 1 || nequil < 0 || blocks < 2 || ncoll < blocks ||
-      check_every < 1 || miss < 0 || !(phi > 0.0 && phi < 0.5)) {
-    usage(argv[0]);
+  if (!*shape) {
+    fprintf(stderr, "pw85_edmd: unknown shape (sphere, spheroid or ellipsoid) or semi-axis of "
+            "--axes not in (1e-3, 1e3)\n");
+    return 2;
+  }
+  if (ncoll < blocks) {
+    fprintf(stderr, "pw85_edmd: --collisions %lld fewer than --blocks %d\n", ncoll, blocks);
     return 2;
   }
   sim_t s = {0};
@@ -550,6 +639,21 @@ int main(int argc, char **argv) {
   printf("pw85_edmd: %d ellipsoids (%s, semi-axes %g %g %g, I = %.6g), packing fraction %g, box %.6g, "
          "%d^3 cells, seed %llu\n",
          n, shape, axes[0], axes[1], axes[2], s.inertia, phi, s.L, s.nc, (unsigned long long)seed);
+  gsd_writer traj;
+  double *gsd_quat = NULL;
+  float *gsd_buf = NULL;
+  int file_error = 0;
+  if (gsd_path) {
+    char app[64];
+    snprintf(app, sizeof app, "pw85_edmd %s", pw85_version());
+    gsd_quat = malloc(4 * nn * sizeof(double));
+    gsd_buf = malloc(4 * nn * sizeof(float));
+    if (!gsd_quat || !gsd_buf || gsd_open(&traj, gsd_path, app, gsd_logged, 1) != 0) {
+      fprintf(stderr, "pw85_edmd: cannot write '%s': %s\n", gsd_path, strerror(errno));
+      return 2;
+    }
+    file_error = write_frame(&traj, &s, axes, cbuf, gsd_quat, gsd_buf) != 0;
+  }
   for (int i = 0; i < n; i++) s.heap[i] = i, s.pos[i] = i, s.ev[i].t = INFINITY;
   for (int i = 0; i < n && st == PW85_OK; i++) st = predict(&s, i);
   double kt0, kr0, p0[3], pm0;
@@ -599,10 +703,17 @@ int main(int argc, char **argv) {
       double kT = 2.0 * kt / (3.0 * (n - 1)); /* momentum is zero */
       zblock[b++] = (2.0 / 3.0 * kt + virial / (3.0 * (s.tnow - tblock))) / (n * kT);
       tblock = s.tnow, virial = 0.0;
+      if (gsd_path && write_frame(&traj, &s, axes, cbuf, gsd_quat, gsd_buf) != 0) file_error = 1;
     }
   }
+  if (gsd_path && gsd_close(&traj) != 0) file_error = 1;
+  free(gsd_quat), free(gsd_buf);
   if (st != PW85_OK) {
     fprintf(stderr, "pw85_edmd: library error: %s\n", pw85_strerror(st));
+    return 2;
+  }
+  if (file_error) {
+    fprintf(stderr, "pw85_edmd: writing '%s' failed\n", gsd_path);
     return 2;
   }
   double kt1, kr1, p1[3], pm1;

@@ -44,6 +44,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "demo_args.h"
 #include "demo_rng.h"
 #include "gsd_write.h"
 
@@ -162,24 +163,6 @@ static void usage(FILE *out) {
           "Defaults: --n 1000 --sweeps 20 --equil 10 --blocks 4 --seed 1 --aspect 3\n"
           "--phi 0.2 --threads 0 (all). Exit status: 0 no overlapping pair at the end,\n"
           "1 an overlapping pair, 2 bad usage, library or file error.\n");
-}
-
-static int parse_long(const char *arg, long lo, long hi, long *out) {
-  char *end;
-  errno = 0;
-  long const v = strtol(arg, &end, 10);
-  if (errno != 0 || end == arg || *end != '\0' || v < lo || v > hi) return -1;
-  *out = v;
-  return 0;
-}
-
-static int parse_double(const char *arg, double lo, double hi, double *out) {
-  char *end;
-  errno = 0;
-  double const v = strtod(arg, &end);
-  if (errno != 0 || end == arg || *end != '\0' || !(v >= lo && v <= hi)) return -1;
-  *out = v;
-  return 0;
 }
 
 /* Largest eigenvalue of the symmetric matrix m = (xx, xy, xz, yy, yz, zz)
@@ -325,7 +308,7 @@ static void progress(progress_t *p, long long done, long long total, double acce
 
 int main(int argc, char **argv) {
   long n = 1000, sweeps = 20, equil = 10, blocks = 4, threads = 0;
-  unsigned long long seed = 1;
+  uint64_t seed = 1;
   double aspect = 3.0, phi = 0.2, target = 0.3;
   const char *xyz_path = NULL, *gsd_path = NULL;
   progress_t prog = {0, isatty(STDERR_FILENO), 0, 0.0, 0.0};
@@ -351,10 +334,7 @@ int main(int argc, char **argv) {
     } else if (!strcmp(o, "--threads")) {
       bad = parse_long(arg, 0, 4096, &threads);
     } else if (!strcmp(o, "--seed")) {
-      char *end;
-      errno = 0;
-      seed = strtoull(arg, &end, 10);
-      bad = errno != 0 || end == arg || *end != '\0' || arg[0] == '-';
+      bad = parse_seed(arg, &seed);
     } else if (!strcmp(o, "--aspect")) {
       bad = parse_double(arg, 1e-3, 1e3, &aspect);
     } else if (!strcmp(o, "--phi")) {
@@ -449,7 +429,7 @@ int main(int argc, char **argv) {
   printf("pw85_mc: %ld %s spheroids (a = %g, c = %g), packing fraction %g, box %.4g, "
          "%d^3 cells, seed %llu\n",
          n, s.c > s.a ? "prolate" : (s.c < s.a ? "oblate" : "spherical"), s.a, s.c, phi, s.L,
-         s.nc, seed);
+         s.nc, (unsigned long long)seed);
 
   rng_t g = {seed};
   double dr = 0.4 * s.a, dtheta = 0.4;

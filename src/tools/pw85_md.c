@@ -2,6 +2,7 @@
  * pw85_scene_contact_derivatives (docs/derivatives.md).
  *
  *   pw85_md [--n N] [--steps S] [--dt DT] [--seed SEED] [--check]
+ *           [--gsd FILE] [--gsd-every K] [--help]
  *
  * N ellipsoids (semi-axes 1, 0.6, 0.4, mass 1) in a periodic cubic box at
  * packing fraction 0.2, pair potential U = eps (1 - mu^2)^3 for mu < 1, zero
@@ -19,7 +20,12 @@
  * |E(end) - E(0)| / |E(0)| and fluctuation (RMS of E - E(0)) / |E(0)|.
  * --check: runs DT for S steps and DT/2 for 2S steps (same time), exit
  * status 0 when the drift of the first run is <= 1e-5 and the fluctuation
- * ratio is 4 +- 20 %, 1 otherwise; 2 on bad usage or a library error. */
+ * ratio is 4 +- 20 %, 1 otherwise; 2 on bad usage or a library error.
+ * --gsd: the trajectory of the run with DT as a GSD file (HOOMD schema,
+ * gsd_write.h): step 0 and every K steps (default S/10), with the potential
+ * and total energy logged as log/pw85/potential_energy and
+ * log/pw85/total_energy. */
+#include <errno.h>
 #include <math.h>
 #include <pw85.h>
 #include <stdint.h>
@@ -27,7 +33,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "demo_args.h"
 #include "demo_rng.h"
+#include "gsd_write.h"
 
 static const double kAxes[3] = {1.0, 0.6, 0.4}, kEps = 1.0, kCut = 2.0;
 
@@ -164,15 +172,35 @@ static void kick(md_t *s, double h) {
   }
 }
 
+/* Side of the cubic box of n ellipsoids at packing fraction 0.2. */
+static double box_side(int n) {
+  double const vol = 4.0 / 3.0 * 3.141592653589793 * kAxes[0] * kAxes[1] * kAxes[2];
+  return cbrt(n * vol / 0.2);
+}
+
+static const char *const gsd_logged[] = {"log/pw85/potential_energy", "log/pw85/total_energy"};
+
+/* A GSD frame of the trajectory (gsd_write_frame): centres, the
+ * quaternions of the orientations, potential and total energy. quat: 4n
+ * doubles, buf: 4n floats of scratch. */
+static int write_frame(gsd_writer *w, const md_t *s, uint64_t step, double u, double e,
+                       double *quat, float *buf) {
+  for (int i = 0; i < s->n; i++) gsd_quaternion_of_rotation(s->a + 9 * i, quat + 4 * i);
+  double const logged[2] = {u, e};
+  gsd_frame const frame = {step,   (uint32_t)s->n, s->L, {kAxes[0], kAxes[1], kAxes[2]}, s->c,
+                           quat,   2,             gsd_logged, logged};
+  return gsd_write_frame(w, &frame, buf);
+}
+
 /* Runs `steps` steps of dt; drift and RMS fluctuation of E relative to |E(0)|,
- * sampled every `every` steps. Returns nonzero on an allocation or library
- * error. */
+ * sampled every `every` steps; with traj, a frame at step 0 and every
+ * traj_every steps. Returns 1 on an allocation or library error, 2 when
+ * the trajectory cannot be written. */
 static int run(int n, int steps, double dt, uint64_t seed, int every, int verbose,
-               double *drift, double *fluct) {
+               gsd_writer *traj, int traj_every, double *drift, double *fluct) {
   md_t s = {0};
   s.n = n;
-  double vol = 4.0 / 3.0 * 3.141592653589793 * kAxes[0] * kAxes[1] * kAxes[2];
-  s.L = cbrt(n * vol / 0.2);
+  s.L = box_side(n);
   for (int e = 0; e < 3; e++)
     s.inertia[e] = 0.2 * (kAxes[(e + 1) % 3] * kAxes[(e + 1) % 3] + kAxes[(e + 2) % 3] * kAxes[(e + 2) % 3]);
   s.c = calloc(3 * n, sizeof(double));
@@ -188,8 +216,11 @@ static int run(int n, int steps, double dt, uint64_t seed, int every, int verbos
   int nc = (int)floor(s.L / kCut);
   s.cell_head = malloc(nc * nc * nc * sizeof(int));
   s.cell_next = malloc(n * sizeof(int));
+  double *quat = traj ? malloc(4 * (size_t)n * sizeof(double)) : NULL;
+  float *fbuf = traj ? malloc(4 * (size_t)n * sizeof(float)) : NULL;
   int err = !s.c || !s.p || !s.a || !s.pi || !s.q || !s.f || !s.tau || !s.pairs || !s.d ||
-            !s.cell_head || !s.cell_next;
+            !s.cell_head || !s.cell_next || (traj && (!quat || !fbuf));
+  int traj_error = 0;
   rng_t g = {seed};
   int side = (int)ceil(cbrt((double)n));
   for (int i = 0; i < n && !err; i++) {
@@ -212,6 +243,7 @@ static int run(int n, int steps, double dt, uint64_t seed, int every, int verbos
   }
   double u = err ? 0.0 : forces(&s, &err), e0 = u + kinetic(&s), sum2 = 0.0, e = e0;
   int samples = 0;
+  if (traj && !err) traj_error = write_frame(traj, &s, 0, u, e0, quat, fbuf) != 0;
   for (int t = 1; t <= steps && !err; t++) {
     kick(&s, 0.5 * dt);
     for (int i = 0; i < n; i++) {
@@ -232,35 +264,113 @@ static int run(int n, int steps, double dt, uint64_t seed, int every, int verbos
       if (verbose && t % (steps / 10 > 0 ? steps / 10 : 1) == 0)
         printf("step %d  t %.4f  E %.12f  U %.6f\n", t, t * dt, e, u);
     }
+    if (traj && !err && t % traj_every == 0)
+      traj_error |= write_frame(traj, &s, (uint64_t)t, u, u + kinetic(&s), quat, fbuf) != 0;
   }
   *drift = fabs(e - e0) / fabs(e0);
   *fluct = sqrt(sum2 / (samples > 0 ? samples : 1)) / fabs(e0);
   free(s.c), free(s.p), free(s.a), free(s.pi), free(s.q), free(s.f), free(s.tau);
-  free(s.pairs), free(s.d), free(s.cell_head), free(s.cell_next);
-  return err;
+  free(s.pairs), free(s.d), free(s.cell_head), free(s.cell_next), free(quat), free(fbuf);
+  return err ? 1 : traj_error ? 2 : 0;
+}
+
+static void usage(FILE *out) {
+  fprintf(out,
+          "usage: pw85_md [--n N] [--steps S] [--dt DT] [--seed SEED] [--check]\n"
+          "               [--gsd FILE] [--gsd-every K] [--help]\n"
+          "Molecular dynamics of N soft ellipsoids (semi-axes 1, 0.6, 0.4) at packing\n"
+          "fraction 0.2, pair potential (1 - mu^2)^3 for mu^2 < 1, forces and torques\n"
+          "from pw85_scene_contact_derivatives; prints the total energy every S/10 steps,\n"
+          "its relative drift and fluctuation.\n"
+          "  --n N          number of ellipsoids, >= 43: 3 cells per side (default 256)\n"
+          "  --steps S      time steps, >= 10 (default 10000)\n"
+          "  --dt DT        time step, > 0 (default 0.002)\n"
+          "  --seed SEED    seed of the initial orientations and velocities (default 1)\n"
+          "  --check        also runs DT/2 for 2S steps; exit 1 unless the drift of the\n"
+          "                 first run is <= 1e-5 and the fluctuation ratio 4 +- 20 %%\n"
+          "  --gsd FILE     writes the trajectory of the first run (GSD, HOOMD schema:\n"
+          "                 positions, orientations, type_shapes ellipsoid; potential\n"
+          "                 and total energy as log/pw85/potential_energy and\n"
+          "                 log/pw85/total_energy)\n"
+          "  --gsd-every K  a frame at step 0 and every K steps (default S/10)\n"
+          "  --help         this text\n"
+          "Exit status: 0 success, 1 a --check failed, 2 bad usage, a library error or a\n"
+          "file that cannot be written.\n");
 }
 
 int main(int argc, char **argv) {
-  int n = 256, steps = 10000, check = 0;
+  long n = 256, steps = 10000, gsd_every = 0;
+  int check = 0;
   double dt = 0.002;
   uint64_t seed = 1;
+  const char *gsd_path = NULL;
   for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--check")) check = 1;
-    else if (i + 1 < argc && !strcmp(argv[i], "--n")) n = atoi(argv[++i]);
-    else if (i + 1 < argc && !strcmp(argv[i], "--steps")) steps = atoi(argv[++i]);
-    else if (i + 1 < argc && !strcmp(argv[i], "--dt")) dt = atof(argv[++i]);
-    else if (i + 1 < argc && !strcmp(argv[i], "--seed")) seed = strtoull(argv[++i], NULL, 10);
-    else {
-      fprintf(stderr, "usage: %s [--n N] [--steps S] [--dt DT] [--seed SEED] [--check]\n", argv[0]);
+    const char *o = argv[i], *arg = i + 1 < argc ? argv[i + 1] : NULL;
+    int bad = 0;
+    if (!strcmp(o, "--help") || !strcmp(o, "-h")) {
+      usage(stdout);
+      return 0;
+    } else if (!strcmp(o, "--check")) {
+      check = 1;
+      continue;
+    } else if (!strcmp(o, "--n")) {
+      bad = !arg || parse_long(arg, 8, 10000000, &n);
+    } else if (!strcmp(o, "--steps")) {
+      bad = !arg || parse_long(arg, 10, 1000000000, &steps);
+    } else if (!strcmp(o, "--dt")) {
+      bad = !arg || parse_double(arg, 1e-12, 1e3, &dt);
+    } else if (!strcmp(o, "--seed")) {
+      bad = !arg || parse_seed(arg, &seed);
+    } else if (!strcmp(o, "--gsd")) {
+      bad = !arg;
+      gsd_path = arg;
+    } else if (!strcmp(o, "--gsd-every")) {
+      bad = !arg || parse_long(arg, 1, 1000000000, &gsd_every);
+    } else {
+      fprintf(stderr, "pw85_md: unknown option '%s'\n", o);
+      usage(stderr);
+      return 2;
+    }
+    if (bad) {
+      fprintf(stderr, "pw85_md: bad or missing value for %s\n", o);
+      usage(stderr);
+      return 2;
+    }
+    i++;
+  }
+  if (floor(box_side((int)n) / kCut) < 3) {
+    fprintf(stderr, "pw85_md: --n %ld: the box (side %g) holds fewer than 3 cells of side %g "
+            "per side; increase --n\n", n, box_side((int)n), kCut);
+    return 2;
+  }
+  if (gsd_every == 0) gsd_every = steps / 10;
+  gsd_writer traj;
+  if (gsd_path) {
+    char app[64];
+    snprintf(app, sizeof app, "pw85_md %s", pw85_version());
+    if (gsd_open(&traj, gsd_path, app, gsd_logged, 2) != 0) {
+      fprintf(stderr, "pw85_md: cannot write '%s': %s\n", gsd_path, strerror(errno));
       return 2;
     }
   }
-  if (n < 8 || steps < 10 || !(dt > 0.0)) return 2;
   double drift, fluct, drift2, fluct2;
-  if (run(n, steps, dt, seed, 10, 1, &drift, &fluct)) return 2;
+  int const status = run((int)n, (int)steps, dt, seed, 10, 1, gsd_path ? &traj : NULL,
+                         (int)gsd_every, &drift, &fluct);
+  if (gsd_path && gsd_close(&traj) != 0 && status == 0) {
+    fprintf(stderr, "pw85_md: writing '%s' failed\n", gsd_path);
+    return 2;
+  }
+  if (status != 0) {
+    fprintf(stderr, "pw85_md: %s\n",
+            status == 2 ? "writing the trajectory failed" : "out of memory or library error");
+    return 2;
+  }
   printf("dt %g: relative drift %.3e, relative fluctuation %.3e\n", dt, drift, fluct);
   if (!check) return 0;
-  if (run(n, 2 * steps, 0.5 * dt, seed, 20, 0, &drift2, &fluct2)) return 2;
+  if (run((int)n, 2 * (int)steps, 0.5 * dt, seed, 20, 0, NULL, 0, &drift2, &fluct2)) {
+    fprintf(stderr, "pw85_md: out of memory or library error\n");
+    return 2;
+  }
   printf("dt %g: relative drift %.3e, relative fluctuation %.3e\n", 0.5 * dt, drift2, fluct2);
   double ratio = fluct / fluct2;
   printf("fluctuation ratio %.3f (expected 4 +- 20 %%)\n", ratio);
