@@ -75,6 +75,25 @@ cat "$tmp/tutorial.out"
 expect "$tmp/tutorial.out" "mu^2 = 3.36271"
 expect "$tmp/tutorial.out" "lambda = 0.166859"
 
+# The same program linked with the rpath of docs/usage.md ("A prefix
+# outside the loader's search path"): it runs without LD_LIBRARY_PATH and
+# loads the staged library.
+rpath=$(PKG_CONFIG_PATH="$stage$libdir/pkgconfig" \
+  pkg-config --define-variable=prefix="$stage$prefix" --variable=libdir pw85)
+# shellcheck disable=SC2086
+"$cc" $san_flags "$srcdir/docs/examples/tutorial.c" $flags -Wl,-rpath,"$rpath" \
+  -o "$tmp/tutorial_rpath"
+if command -v ldd >/dev/null 2>&1; then
+  resolved=$(env -u LD_LIBRARY_PATH ldd "$tmp/tutorial_rpath" | grep 'libpw85\.so' || true)
+  echo "resolved with -Wl,-rpath,$rpath: $resolved"
+  case $resolved in
+    *"$stage"*) ;;
+    *) echo "FAIL: the tutorial linked with the rpath does not load the staged libpw85"; status=1 ;;
+  esac
+fi
+env -u LD_LIBRARY_PATH "$tmp/tutorial_rpath" >"$tmp/tutorial_rpath.out"
+expect "$tmp/tutorial_rpath.out" "mu^2 = 3.36271"
+
 # Fortran: the example against the installed pw85.mod and libpw85_fortran.a,
 # with the flags of the staged pw85-fortran.pc.
 if [ -n "$fc" ]; then
