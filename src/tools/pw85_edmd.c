@@ -439,6 +439,11 @@ static void totals(const sim_t *s, double *ktrans, double *krot, double p[3], do
 
 /* ---- set-up and main loop --------------------------------------------------- */
 
+static void free_sim(sim_t *s) {
+  free(s->t0), free(s->c), free(s->v), free(s->w), free(s->a), free(s->cell), free(s->count);
+  free(s->ev), free(s->heap), free(s->pos), free(s->head), free(s->next);
+}
+
 static const char *const gsd_logged[] = {"log/pw85/time"};
 
 /* A GSD frame of the scene at s->tnow (gsd_write_frame): centres, the
@@ -650,6 +655,8 @@ int main(int argc, char **argv) {
     gsd_buf = malloc(4 * nn * sizeof(float));
     if (!gsd_quat || !gsd_buf || gsd_open(&traj, gsd_path, app, gsd_logged, 1) != 0) {
       fprintf(stderr, "pw85_edmd: cannot write '%s': %s\n", gsd_path, strerror(errno));
+      free_sim(&s);
+      free(cbuf), free(qbuf), free(zblock), free(gsd_quat), free(gsd_buf);
       return 2;
     }
     file_error = write_frame(&traj, &s, axes, cbuf, gsd_quat, gsd_buf) != 0;
@@ -752,7 +759,7 @@ int main(int argc, char **argv) {
              ck.angular || ck.scene_overlaps || !(de <= 1e-10) || !(dp <= 1e-10) ||
              (cs && !(spheres && fabs(zm / zcs - 1.0) <= 0.01));
   printf("%s\n", fail ? "FAILED" : "OK");
-  free(s.t0), free(s.c), free(s.v), free(s.w), free(s.a), free(s.cell), free(s.count), free(s.ev);
-  free(s.heap), free(s.pos), free(s.head), free(s.next), free(cbuf), free(qbuf), free(zblock);
+  free_sim(&s);
+  free(cbuf), free(qbuf), free(zblock);
   return check && fail ? 1 : 0;
 }
