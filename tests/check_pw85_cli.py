@@ -6,8 +6,11 @@ usage: check_pw85_cli.py PROGRAM
 mu^2 is compared with an mpmath reference (50 digits, maximum of
 f(l) = l (1 - l) r^T ((1 - l) Q1 + l Q2)^{-1} r), the batch rows with the
 one-pair call, and the quaternion lines with matrices built here by
-rotating the body axes with the Hamilton product q v q*. Garbage lines
-(seeded) must give a message naming the line, never a crash.
+rotating the body axes with the Hamilton product q v q*. The messages:
+the count of failed lines among the non-blank ones, the number of values
+--spheroids and --matrices need, a zero, NaN or infinite quaternion named
+as such (scaled quaternions, 1e-300 to 1e300, give the unit one's mu^2).
+Garbage lines (seeded) must give a message naming the line, never a crash.
 """
 import os
 import random
