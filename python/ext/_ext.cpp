@@ -1,0 +1,198 @@
+// pw85._ext: the hot calls of the Python package pw85 compiled (nanobind),
+// in place of their ctypes calls (python/pw85/_native.py chooses):
+//
+//   overlap1(r12, q1, q2)                  pw85_overlap of one pair
+//   contact_function1(r12, q1, q2, method) pw85_contact_function_method of one pair
+//   overlap_pairs(m, r12, q1, q2, overlap, status, nthreads)
+//   contact_function_pairs(m, r12, q1, q2, method, res, status, nthreads)
+//
+// The one-pair calls take the vectors and matrices as float64 buffers of
+// 3 and 6 elements (NumPy arrays of any strides and alignment, bytes views)
+// or lists or tuples of floats and ints, and copy them into aligned local
+// arrays; anything else returns None, and the Python function converts it
+// (and names what is wrong) as for a batch. They return the C call's
+// result: the verdict as a bool, or (mu2, lambda) as NumPy float64 scalars,
+// or the negative status as an int.
+//
+// The pair calls take the C-contiguous, aligned arrays the Python functions
+// prepare (checked here: a ValueError otherwise) and return the C call's
+// status. Every C call runs without the GIL.
+#include <nanobind/nanobind.h>
+
+#include <cstdint>
+#include <cstring>
+
+#include <pw85.h>
+
+namespace nb = nanobind;
+
+namespace {
+
+// NumPy's float64 type: set once, when the module is imported (NumPy is a
+// dependency of pw85), and only read afterwards.
+PyObject *float64_type = nullptr;
+
+// A float64 scalar of value x (NumPy's double scalar extends Python's float
+// and keeps its layout, so its value is the float's).
+PyObject *new_float64(double x) {
+  PyObject *value = PyFloat_FromDouble(x);
+  if (value == nullptr) return nullptr;
+  PyObject *scalar = PyObject_CallOneArg(float64_type, value);
+  Py_DECREF(value);
+  return scalar;
+}
+
+bool is_native_double(const char *format) {
+  if (format == nullptr) return true;  // "B" implied; rejected by itemsize
+  if (*format == '@' || *format == '=') {
+    ++format;
+  } else if (*format == '<') {
+#if PY_LITTLE_ENDIAN
+    ++format;
+#else
+    return false;
+#endif
+  }
+  return format[0] == 'd' && format[1] == '\0';
+}
+
+// out[0..n) from obj when obj is a 1D buffer of n native doubles (any
+// strides and alignment) or a list or tuple of n floats or ints (not
+// bools); false (no Python error set) otherwise.
+bool read_vector(PyObject *obj, Py_ssize_t n, double *out) {
+  if (PyList_CheckExact(obj) || PyTuple_CheckExact(obj)) {
+    if (PySequence_Fast_GET_SIZE(obj) != n) return false;
+    PyObject **items = PySequence_Fast_ITEMS(obj);
+    for (Py_ssize_t k = 0; k < n; ++k) {
+      PyObject *item = items[k];
+      if (PyFloat_CheckExact(item)) {
+        out[k] = PyFloat_AS_DOUBLE(item);
+      } else if (PyLong_CheckExact(item)) {
+        out[k] = PyLong_AsDouble(item);
+        if (out[k] == -1.0 && PyErr_Occurred()) {
+          PyErr_Clear();
+          return false;
+        }
+      } else {
+        return false;
+      }
+    }
+    return true;
+  }
+  if (!PyObject_CheckBuffer(obj)) return false;
+  Py_buffer view;
+  if (PyObject_GetBuffer(obj, &view, PyBUF_RECORDS_RO) != 0) {
+    PyErr_Clear();
+    return false;
+  }
+  bool ok = view.ndim == 1 && view.shape[0] == n && view.itemsize == sizeof(double) &&
+            is_native_double(view.format);
+  if (ok) {
+    const char *p = static_cast<const char *>(view.buf);
+    for (Py_ssize_t k = 0; k < n; ++k) std::memcpy(out + k, p + k * view.strides[0], sizeof(double));
+  }
+  PyBuffer_Release(&view);
+  return ok;
+}
+
+// A C-contiguous, aligned buffer of `count` items of `itemsize` bytes
+// (writable if asked), held for the duration of a pair call.
+class Array {
+ public:
+  Array(nb::handle obj, const char *name, long long count, Py_ssize_t itemsize, bool writable) {
+    int flags = PyBUF_C_CONTIGUOUS | (writable ? PyBUF_WRITABLE : 0);
+    if (PyObject_GetBuffer(obj.ptr(), &view_, flags) != 0) throw nb::python_error();
+    held_ = true;
+    if (view_.len != count * itemsize ||
+        reinterpret_cast<std::uintptr_t>(view_.buf) % alignof(double) != 0) {
+      PyErr_Format(PyExc_ValueError,
+                   "pw85._ext: %s: expected %lld aligned items of %zd bytes, got %zd bytes",
+                   name, count, itemsize, view_.len);
+      throw nb::python_error();
+    }
+  }
+  Array(const Array &) = delete;
+  Array &operator=(const Array &) = delete;
+  ~Array() {
+    if (held_) PyBuffer_Release(&view_);
+  }
+  template <class T>
+  T *data() const {
+    return static_cast<T *>(view_.buf);
+  }
+
+ private:
+  Py_buffer view_{};
+  bool held_ = false;
+};
+
+nb::object overlap1(nb::handle r12, nb::handle q1, nb::handle q2) {
+  double r[PW85_DIM], a[PW85_SYM], b[PW85_SYM];
+  if (!read_vector(r12.ptr(), PW85_DIM, r) || !read_vector(q1.ptr(), PW85_SYM, a) ||
+      !read_vector(q2.ptr(), PW85_SYM, b))
+    return nb::none();
+  int verdict;
+  {
+    nb::gil_scoped_release unlocked;
+    verdict = pw85_overlap(r, a, b);
+  }
+  if (verdict < 0) return nb::int_(verdict);
+  return nb::bool_(verdict == 1);
+}
+
+nb::object contact_function1(nb::handle r12, nb::handle q1, nb::handle q2, int method) {
+  double r[PW85_DIM], a[PW85_SYM], b[PW85_SYM];
+  if (!read_vector(r12.ptr(), PW85_DIM, r) || !read_vector(q1.ptr(), PW85_SYM, a) ||
+      !read_vector(q2.ptr(), PW85_SYM, b))
+    return nb::none();
+  pw85_result res;
+  int status;
+  {
+    nb::gil_scoped_release unlocked;
+    status = pw85_contact_function_method(r, a, b, method, &res);
+  }
+  if (status != PW85_OK) return nb::int_(status);
+  nb::object mu2 = nb::steal(new_float64(res.mu2));
+  if (!mu2.is_valid()) throw nb::python_error();
+  nb::object lambda = nb::steal(new_float64(res.lambda));
+  if (!lambda.is_valid()) throw nb::python_error();
+  return nb::make_tuple(mu2, lambda);
+}
+
+int overlap_pairs(long long m, nb::handle r12, nb::handle q1, nb::handle q2,
+                  nb::handle overlap, nb::handle status, int nthreads) {
+  Array s(status, "status", m, sizeof(int), true), ov(overlap, "overlap", m, sizeof(int), true);
+  Array r(r12, "r12", m * PW85_DIM, sizeof(double), false);
+  Array a(q1, "q1", m * PW85_SYM, sizeof(double), false);
+  Array b(q2, "q2", m * PW85_SYM, sizeof(double), false);
+  nb::gil_scoped_release unlocked;
+  return pw85_overlap_pairs(m, r.data<const double>(), a.data<const double>(),
+                            b.data<const double>(), ov.data<int>(), s.data<int>(), nthreads);
+}
+
+int contact_function_pairs(long long m, nb::handle r12, nb::handle q1, nb::handle q2,
+                           int method, nb::handle res, nb::handle status, int nthreads) {
+  Array s(status, "status", m, sizeof(int), true);
+  Array out(res, "res", m, sizeof(pw85_result), true);
+  Array r(r12, "r12", m * PW85_DIM, sizeof(double), false);
+  Array a(q1, "q1", m * PW85_SYM, sizeof(double), false);
+  Array b(q2, "q2", m * PW85_SYM, sizeof(double), false);
+  nb::gil_scoped_release unlocked;
+  return pw85_contact_function_pairs(m, r.data<const double>(), a.data<const double>(),
+                                     b.data<const double>(), method, out.data<pw85_result>(),
+                                     s.data<int>(), nthreads);
+}
+
+}  // namespace
+
+NB_MODULE(_ext, m) {
+  nb::object float64 = nb::module_::import_("numpy").attr("float64");
+  float64_type = float64.release().ptr();  // kept for the life of the process
+  m.doc() = "Compiled one-pair and per-pair calls of pw85 (internal; use pw85).";
+  m.def("overlap1", &overlap1, nb::arg("r12").none(), nb::arg("q1").none(),
+        nb::arg("q2").none());
+  m.def("contact_function1", &contact_function1, nb::arg("r12").none(), nb::arg("q1").none(),
+        nb::arg("q2").none(), nb::arg("method"));
+  m.def("overlap_pairs", &overlap_pairs);
+  m.def("contact_function_pairs", &contact_function_pairs);
+}
