@@ -8,6 +8,7 @@ import numpy as np
 
 from ._lib import (lib, Error, Method, Status, status_name, strerror,
                    Result, Contact, RESULT_DTYPE, CONTACT_DTYPE, DERIVATIVES_DTYPE)
+from ._native import ext as _ext
 
 F64 = np.dtype(np.float64)
 _ND = np.ndarray
@@ -21,10 +22,18 @@ _METHODS.update({int(m): int(m) for m in Method})
 
 # ---- argument conversion --------------------------------------------------
 
+def _aligned(x):
+    """x itself when its data are aligned for its dtype, else an aligned copy
+    (a view at an odd byte offset into a buffer: the C library reads the
+    elements as aligned doubles)."""
+    return x if x.flags.aligned else x.copy()
+
+
 def _arr(x, name, last, ndim=None):
-    """x as a C-contiguous float64 array whose last axis has length `last`
-    (a copy only when x is not one already)."""
-    if not (type(x) is np.ndarray and x.dtype is F64 and x.flags.c_contiguous):
+    """x as a C-contiguous, aligned float64 array whose last axis has length
+    `last` (a copy only when x is not one already)."""
+    if not (type(x) is np.ndarray and x.dtype is F64 and x.flags.c_contiguous
+            and x.flags.aligned):
         if x is None or isinstance(x, (str, bytes)):
             raise TypeError(f"{name}: expected an array of real numbers, got {type(x).__name__}")
         try:
@@ -38,7 +47,7 @@ def _arr(x, name, last, ndim=None):
                 raise TypeError(f"{name}: not an array of real numbers ({e})") from None
         elif a.dtype.kind not in "iuf":
             raise TypeError(f"{name}: expected real numbers, got dtype {a.dtype}")
-        x = np.asarray(a, dtype=F64, order="C")
+        x = _aligned(np.asarray(a, dtype=F64, order="C"))
     if last is not None and (x.ndim == 0 or x.shape[-1] != last):
         raise ValueError(f"{name}: expected shape (..., {last}), got {x.shape}")
     if ndim is not None and x.ndim != ndim:
@@ -289,13 +298,68 @@ def ellipsoid_rotation(radii, rot):
                     _arr(radii, "radii", 3), _matrices(rot, "rot"), "rot", (3, 3), reason)
 
 
-def ellipsoid_quat(radii, quat):
-    """Quadratic form of ellipsoids: semi-axes radii (..., 3) rotated by the
-    quaternions quat (..., 4) = (w, x, y, z) (HOOMD-blue, GSD, LAMMPS order;
-    body to lab frame). |quat|^2 within 1e-5 of 1 is accepted and normalised
-    (float32 quaternions as read from a GSD file); returns shape (..., 6).
-    LAMMPS shape (diameters): radii = shape / 2. OVITO's (x, y, z, w):
-    quat[..., [3, 0, 1, 2]]. pw85.Error naming the argument on failure."""
+def ellipsoid_quat(radii, quat, scalar_first=True):
+    """Quadratic forms of ellipsoids given by semi-axes and quaternions.
+
+    Q = R diag(radii²) Rᵀ, R the rotation (body to lab frame) of the unit
+    quaternion, by ``pw85_ellipsoid_quat``.
+
+    Parameters
+    ----------
+    radii : array_like, shape (..., 3)
+        Semi-axes along the body axes x, y, z (LAMMPS ``shape`` holds
+        diameters: pass ``shape / 2``).
+    quat : array_like, shape (..., 4), or scipy.spatial.transform.Rotation
+        Quaternions; ``|quat|²`` within 1e-5 of 1 is accepted and normalised
+        (float32 quaternions as read from a GSD file). Any object with an
+        ``as_matrix()`` method, such as a SciPy ``Rotation`` (one or a
+        stack), is taken as its rotation matrices (``pw85.ellipsoid_rotation``).
+    scalar_first : bool, default True
+        True: (w, x, y, z), the order of HOOMD-blue, GSD, LAMMPS and
+        python-fcl; False: (x, y, z, w), the order of SciPy's
+        ``Rotation.as_quat()`` and OVITO. Ignored for a ``Rotation``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
+        The quadratic forms, batch axes of radii and quat broadcast.
+
+    Raises
+    ------
+    TypeError
+        scalar_first not a bool, or an argument not an array of real numbers.
+    ValueError
+        A wrong shape.
+    pw85.Error
+        A radius not finite and > 0, a quaternion not of norm 1 within 1e-5
+        (``ERR_NOT_ORTHONORMAL``), a non-finite value; the message names
+        the argument and the pair.
+
+    Examples
+    --------
+    A rotation by 90° about z maps the body axis x onto the lab axis y:
+
+    >>> import numpy as np, pw85
+    >>> c = np.sqrt(0.5)
+    >>> print(pw85.ellipsoid_quat([3., 2., 1.], [c, 0., 0., c]).round(12) + 0.)
+    [4. 0. 0. 9. 0. 1.]
+    >>> print(pw85.ellipsoid_quat([3., 2., 1.], [0., 0., c, c], scalar_first=False).round(12) + 0.)
+    [4. 0. 0. 9. 0. 1.]
+    """
+    if type(scalar_first) is not bool:
+        raise TypeError(f"scalar_first: expected True or False, got {type(scalar_first).__name__}")
+    if callable(getattr(quat, "as_matrix", None)):
+        def reason_rot(s, rk, ok):
+            if s == Status.ERR_NOT_ORTHONORMAL:
+                return "the rotation's as_matrix() is not orthonormal to 1e-10"
+            return _range_reason(s, rk)
+        return _build_q("ellipsoid_quat", lib.pw85_ellipsoid_rotation, _arr(radii, "radii", 3),
+                        _matrices(quat.as_matrix(), "quat.as_matrix()"), "quat.as_matrix()",
+                        (3, 3), reason_rot)
+    u = _arr(quat, "quat", 4)
+    if not scalar_first:
+        u = np.ascontiguousarray(u[..., [3, 0, 1, 2]])
+
     def reason(s, rk, ok):
         if s == Status.ERR_NOT_ORTHONORMAL:
             return f"quat = {ok.tolist()}: |quat|^2 = {float(ok @ ok)!r} not within 1e-5 of 1"
@@ -303,7 +367,7 @@ def ellipsoid_quat(radii, quat):
             return f"radii = {rk.tolist()}: Q not positive definite once rounded"
         return _range_reason(s, rk)
     return _build_q("ellipsoid_quat", lib.pw85_ellipsoid_quat, _arr(radii, "radii", 3),
-                    _arr(quat, "quat", 4), "quat", (4,), reason)
+                    u, "quat", (4,), reason)
 
 
 def ellipsoid_axes(q):
@@ -350,7 +414,13 @@ def contact_function(r12, q1, q2, method="default", nthreads=0, check=True):
     nt = nthreads
     if type(nt) is not int or not 0 <= nt <= _INT_MAX:
         nt = _nthreads(nt)
-    if (type(r12) is _ND and type(q1) is _ND and type(q2) is _ND
+    if _ext is not None:
+        # one pair of float64 buffers or lists: (mu2, lambda_), else None
+        # (not one pair: converted below) or a status (reported below)
+        v = _ext.contact_function1(r12, q1, q2, meth)
+        if type(v) is tuple:
+            return v if check else (v[0], v[1], 0)
+    elif (type(r12) is _ND and type(q1) is _ND and type(q2) is _ND
             and r12.shape == _S3 and q1.shape == _S6 and q2.shape == _S6
             and r12.dtype is F64 and q1.dtype is F64 and q2.dtype is F64):
         try:
@@ -374,7 +444,9 @@ def contact_function(r12, q1, q2, method="default", nthreads=0, check=True):
     res = np.empty(batch, RESULT_DTYPE)
     st = np.zeros(batch, np.intc)
     ret = 0
-    if m:
+    if m and _ext is not None:
+        ret = _ext.contact_function_pairs(m, r, a, b, meth, res, st, nt)
+    elif m:
         ret = lib.pw85_contact_function_pairs(m, r.ctypes.data, a.ctypes.data, b.ctypes.data,
                                               meth, res.ctypes.data, st.ctypes.data, nt)
     mu2 = res["mu2"].copy()
@@ -397,7 +469,13 @@ def overlap(r12, q1, q2, nthreads=0, check=True):
     nt = nthreads
     if type(nt) is not int or not 0 <= nt <= _INT_MAX:
         nt = _nthreads(nt)
-    if (type(r12) is _ND and type(q1) is _ND and type(q2) is _ND
+    if _ext is not None:
+        # one pair of float64 buffers or lists: a bool, else None (not one
+        # pair: converted below) or a status (reported below)
+        v = _ext.overlap1(r12, q1, q2)
+        if type(v) is bool:
+            return v if check else (v, 0)
+    elif (type(r12) is _ND and type(q1) is _ND and type(q2) is _ND
             and r12.shape == _S3 and q1.shape == _S6 and q2.shape == _S6
             and r12.dtype is F64 and q1.dtype is F64 and q2.dtype is F64):
         try:
@@ -418,7 +496,9 @@ def overlap(r12, q1, q2, nthreads=0, check=True):
     ov = np.empty(batch, np.intc)
     st = np.zeros(batch, np.intc)
     ret = 0
-    if m:
+    if m and _ext is not None:
+        ret = _ext.overlap_pairs(m, r, a, b, ov, st, nt)
+    elif m:
         ret = lib.pw85_overlap_pairs(m, r.ctypes.data, a.ctypes.data, b.ctypes.data,
                                      ov.ctypes.data, st.ctypes.data, nt)
     if ret and check:
@@ -536,7 +616,7 @@ def _scene(centres, q, pairs, box):
         raise TypeError(f"pairs: expected integers, got dtype {p.dtype}")
     if p.ndim != 2 or p.shape[1] != 2:
         raise ValueError(f"pairs: expected shape (m, 2), got {p.shape}")
-    p = np.ascontiguousarray(p, dtype=np.int64)
+    p = _aligned(np.ascontiguousarray(p, dtype=np.int64))
     if box is None:
         bx, pbox = None, None
     else:
