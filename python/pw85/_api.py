@@ -441,16 +441,19 @@ def contact_function(r12, q1, q2, method="default", nthreads=0, check=True):
         return np.float64(_NAN), np.float64(_NAN), int(st)
     batch, (r, a, b) = _pairs(r12, q1, q2)
     m = _size(batch)
-    res = np.empty(batch, RESULT_DTYPE)
-    st = np.zeros(batch, np.intc)
-    ret = 0
-    if m and _ext is not None:
-        ret = _ext.contact_function_pairs(m, r, a, b, meth, res, st, nt)
-    elif m:
-        ret = lib.pw85_contact_function_pairs(m, r.ctypes.data, a.ctypes.data, b.ctypes.data,
-                                              meth, res.ctypes.data, st.ctypes.data, nt)
-    mu2 = res["mu2"].copy()
-    lam = res["lambda"].copy()
+    if _ext is not None:
+        mu2, lam = np.empty(batch), np.empty(batch)
+        st = np.empty(batch, np.intc)  # every entry written
+        ret = _ext.contact_function_pairs(m, r, a, b, meth, mu2, lam, st, nt) if m else 0
+    else:
+        res = np.empty(batch, RESULT_DTYPE)
+        st = np.zeros(batch, np.intc)
+        ret = 0
+        if m:
+            ret = lib.pw85_contact_function_pairs(m, r.ctypes.data, a.ctypes.data, b.ctypes.data,
+                                                  meth, res.ctypes.data, st.ctypes.data, nt)
+        mu2 = res["mu2"].copy()
+        lam = res["lambda"].copy()
     if ret:
         if check:
             _raise("contact_function", ret, st, _rows(r12=r, q1=a, q2=b), batch)
@@ -493,17 +496,20 @@ def overlap(r12, q1, q2, nthreads=0, check=True):
         return False, int(v)
     batch, (r, a, b) = _pairs(r12, q1, q2)
     m = _size(batch)
-    ov = np.empty(batch, np.intc)
-    st = np.zeros(batch, np.intc)
-    ret = 0
-    if m and _ext is not None:
-        ret = _ext.overlap_pairs(m, r, a, b, ov, st, nt)
-    elif m:
-        ret = lib.pw85_overlap_pairs(m, r.ctypes.data, a.ctypes.data, b.ctypes.data,
-                                     ov.ctypes.data, st.ctypes.data, nt)
+    if _ext is not None:
+        res = np.empty(batch, bool)
+        st = np.empty(batch, np.intc)  # every entry written
+        ret = _ext.overlap_pairs(m, r, a, b, res, st, nt) if m else 0
+    else:
+        ov = np.empty(batch, np.intc)
+        st = np.zeros(batch, np.intc)
+        ret = 0
+        if m:
+            ret = lib.pw85_overlap_pairs(m, r.ctypes.data, a.ctypes.data, b.ctypes.data,
+                                         ov.ctypes.data, st.ctypes.data, nt)
+        res = ov > 0
     if ret and check:
         _raise("overlap", ret, st, _rows(r12=r, q1=a, q2=b), batch)
-    res = ov > 0
     if check:
         return _out(res, batch)
     return _out(res, batch), _out(st, batch)

@@ -160,10 +160,36 @@ def test_one_pair_errors():
 
 
 def test_pair_calls_check_their_buffers():
-    out = np.empty(4, np.intc)
+    out, st = np.empty(4, bool), np.empty(4, np.intc)
     with pytest.raises(ValueError, match="r12"):
-        _native.ext.overlap_pairs(4, R12[:3], Q1[:4], Q2[:4], out, out.copy(), 1)
+        _native.ext.overlap_pairs(4, R12[:3], Q1[:4], Q2[:4], out, st, 1)
     with pytest.raises(ValueError, match="q1"):
-        _native.ext.overlap_pairs(4, R12[:4], misaligned(Q1[:4]), Q2[:4], out, out.copy(), 1)
+        _native.ext.overlap_pairs(4, R12[:4], misaligned(Q1[:4]), Q2[:4], out, st, 1)
+    with pytest.raises(ValueError, match="overlap"):
+        _native.ext.overlap_pairs(4, R12[:4], Q1[:4], Q2[:4], st, st, 1)
     with pytest.raises((TypeError, BufferError, ValueError)):
         _native.ext.overlap_pairs(4, R12[:4], Q1[:4], Q2[:4], out, R12[:4, 0], 1)
+    with pytest.raises(ValueError, match="mu2"):
+        _native.ext.contact_function_pairs(4, R12[:4], Q1[:4], Q2[:4], 0, st, st, st, 1)
+
+
+def test_batch_over_chunks():
+    # More pairs than one chunk of the module's pair calls (32768), the
+    # first failing pair in the second chunk: its status and index.
+    m = 70000
+    r = np.tile(R12[:7], (m // 7, 1))
+    a = np.tile(Q1[:7], (m // 7, 1))
+    b = np.tile(Q2[:7], (m // 7, 1))
+    a[40000] = [1., 0., 0., -1., 0., 1.]
+    b[60000] = np.nan
+    mu2, lam, st = pw85.contact_function(r, a, b, check=False)
+    ov, st_ov = pw85.overlap(r, a, b, check=False)
+    assert np.flatnonzero(st).tolist() == [40000, 60000] == np.flatnonzero(st_ov).tolist()
+    assert np.isnan(mu2[40000]) and not ov[40000] and not ov[60000]
+    ref_mu2, ref_lam = pw85.contact_function(R12[:7], Q1[:7], Q2[:7])
+    keep = st == 0
+    assert np.array_equal(mu2[keep], np.tile(ref_mu2, m // 7)[keep])
+    assert np.array_equal(ov[keep], np.tile(pw85.overlap(R12[:7], Q1[:7], Q2[:7]), m // 7)[keep])
+    with pytest.raises(pw85.Error) as info:
+        pw85.contact_function(r, a, b)
+    assert info.value.index == 40000 and info.value.status == pw85.Status.ERR_NOT_SPD
