@@ -1,8 +1,10 @@
 // pw85._ext: the hot calls of the Python package pw85 compiled (nanobind),
 // in place of their ctypes calls (python/pw85/_native.py chooses):
 //
-//   overlap1(r12, q1, q2)                  pw85_overlap of one pair
-//   contact_function1(r12, q1, q2, method) pw85_contact_function_method of one pair
+//   overlap1(r12, q1, q2, nthreads, check)
+//       pw85_overlap of one pair
+//   contact_function1(r12, q1, q2, method, nthreads, check)
+//       pw85_contact_function_method of one pair
 //   overlap_pairs(m, r12, q1, q2, overlap, status, nthreads)
 //       pw85_overlap_pairs; overlap: bool (1 byte) per pair
 //   contact_function_pairs(m, r12, q1, q2, method, mu2, lambda, status, nthreads)
@@ -11,10 +13,12 @@
 // The one-pair calls take the vectors and matrices as float64 buffers of
 // 3 and 6 elements (NumPy arrays of any strides and alignment, bytes views)
 // or lists or tuples of floats and ints, and copy them into aligned local
-// arrays; anything else returns None, and the Python function converts it
-// (and names what is wrong) as for a batch. They return the C call's
-// result: the verdict as a bool, or (mu2, lambda) as NumPy float64 scalars,
-// or the negative status as an int.
+// arrays. They return what the Python function returns for a pair that
+// succeeds: the verdict as a bool, or (mu2, lambda) as NumPy float64
+// scalars (with a status 0 appended for check=False); None for anything
+// else (other arguments, a failing pair), which the Python function then
+// converts, computes again and reports (naming what is wrong) as for a
+// batch.
 //
 // The pair calls take the C-contiguous, aligned arrays the Python functions
 // prepare (checked here: a ValueError otherwise) and return the C call's
@@ -24,6 +28,7 @@
 #include <nanobind/nanobind.h>
 
 #include <algorithm>
+#include <climits>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -39,13 +44,13 @@ namespace {
 // dependency of pw85), and only read afterwards.
 PyObject *float64_type = nullptr;
 
-// A float64 scalar of value x (NumPy's double scalar extends Python's float
-// and keeps its layout, so its value is the float's).
+// A float64 scalar of value x, made as NumPy makes its scalars (tp_alloc
+// of the type, then the value): NumPy's double scalar extends Python's
+// float, so its value is the float's ob_fval.
 PyObject *new_float64(double x) {
-  PyObject *value = PyFloat_FromDouble(x);
-  if (value == nullptr) return nullptr;
-  PyObject *scalar = PyObject_CallOneArg(float64_type, value);
-  Py_DECREF(value);
+  PyTypeObject *type = reinterpret_cast<PyTypeObject *>(float64_type);
+  PyObject *scalar = type->tp_alloc(type, 0);
+  if (scalar != nullptr) reinterpret_cast<PyFloatObject *>(scalar)->ob_fval = x;
   return scalar;
 }
 
@@ -62,6 +67,28 @@ bool is_native_double(const char *format) {
   }
   return format[0] == 'd' && format[1] == '\0';
 }
+
+// The leading fields of NumPy's array object (PyArrayObject_fields of
+// numpy/ndarraytypes.h, the same in NumPy 1 and 2; NumPy's own inline
+// accessors compiled into every extension read them). Read for arrays of
+// the exact type numpy.ndarray with the float64 descriptor only, and only
+// once module import has checked them against the buffer protocol on an
+// array of its own (numpy_fields_ok): the buffer protocol costs about 600
+// instructions per array, more than a one-pair overlap test.
+struct NumpyArrayFields {
+  PyObject_HEAD
+  char *data;
+  int nd;
+  Py_ssize_t *dimensions;
+  Py_ssize_t *strides;
+  PyObject *base;
+  PyObject *descr;
+};
+
+// Set once, when the module is imported, and only read afterwards.
+PyTypeObject *ndarray_type = nullptr;
+PyObject *float64_descr = nullptr;
+bool numpy_fields_ok = false;
 
 // out[0..n) from obj when obj is a 1D buffer of n native doubles (any
 // strides and alignment) or a list or tuple of n floats or ints (not
@@ -85,6 +112,15 @@ bool read_vector(PyObject *obj, Py_ssize_t n, double *out) {
       }
     }
     return true;
+  }
+  if (numpy_fields_ok && Py_TYPE(obj) == ndarray_type) {
+    const NumpyArrayFields *a = reinterpret_cast<const NumpyArrayFields *>(obj);
+    if (a->descr == float64_descr) {
+      if (a->nd != 1 || a->dimensions[0] != n) return false;
+      for (Py_ssize_t k = 0; k < n; ++k)
+        std::memcpy(out + k, a->data + k * a->strides[0], sizeof(double));
+      return true;
+    }
   }
   if (!PyObject_CheckBuffer(obj)) return false;
   Py_buffer view;
@@ -133,37 +169,74 @@ class Array {
   bool held_ = false;
 };
 
-nb::object overlap1(nb::handle r12, nb::handle q1, nb::handle q2) {
+// The arguments the one-pair calls handle themselves: nthreads an int in
+// [0, INT_MAX] (ignored for one pair), check True or False, method (below);
+// anything else goes through the Python function.
+bool plain_options(PyObject *nthreads, PyObject *check) {
+  if (!PyLong_CheckExact(nthreads) || (check != Py_True && check != Py_False)) return false;
+  int overflow;
+  long long n = PyLong_AsLongLongAndOverflow(nthreads, &overflow);
+  return overflow == 0 && n >= 0 && n <= INT_MAX;
+}
+
+// A PW85_METHOD_* from a pw85.Method or int, or a lower-case method name;
+// -1 for anything else (the Python function converts or rejects it).
+int method_of(PyObject *method) {
+  static const char *const names[] = {"default", "brent", "newton", "rational", "zheng"};
+  static_assert(PW85_METHOD_DEFAULT == 0 && PW85_METHOD_BRENT == 1 && PW85_METHOD_NEWTON == 2 &&
+                    PW85_METHOD_RATIONAL == 3 && PW85_METHOD_ZHENG == 4,
+                "names[] follows the PW85_METHOD_* values");
+  if (PyUnicode_CheckExact(method)) {
+    for (int k = 0; k < 5; ++k)
+      if (PyUnicode_CompareWithASCIIString(method, names[k]) == 0) return k;
+    return -1;
+  }
+  if (PyLong_Check(method) && !PyBool_Check(method)) {
+    int overflow;
+    long long v = PyLong_AsLongLongAndOverflow(method, &overflow);
+    if (overflow == 0 && v >= 0 && v < 5) return static_cast<int>(v);
+  }
+  return -1;
+}
+
+nb::object overlap1(nb::handle r12, nb::handle q1, nb::handle q2, nb::handle nthreads,
+                    nb::handle check) {
   double r[PW85_DIM], a[PW85_SYM], b[PW85_SYM];
-  if (!read_vector(r12.ptr(), PW85_DIM, r) || !read_vector(q1.ptr(), PW85_SYM, a) ||
-      !read_vector(q2.ptr(), PW85_SYM, b))
+  if (!plain_options(nthreads.ptr(), check.ptr()) || !read_vector(r12.ptr(), PW85_DIM, r) ||
+      !read_vector(q1.ptr(), PW85_SYM, a) || !read_vector(q2.ptr(), PW85_SYM, b))
     return nb::none();
   int verdict;
   {
     nb::gil_scoped_release unlocked;
     verdict = pw85_overlap(r, a, b);
   }
-  if (verdict < 0) return nb::int_(verdict);
-  return nb::bool_(verdict == 1);
+  if (verdict < 0) return nb::none();
+  nb::bool_ result(verdict == 1);
+  if (check.ptr() == Py_True) return std::move(result);
+  return nb::make_tuple(result, 0);
 }
 
-nb::object contact_function1(nb::handle r12, nb::handle q1, nb::handle q2, int method) {
+nb::object contact_function1(nb::handle r12, nb::handle q1, nb::handle q2, nb::handle method,
+                             nb::handle nthreads, nb::handle check) {
   double r[PW85_DIM], a[PW85_SYM], b[PW85_SYM];
-  if (!read_vector(r12.ptr(), PW85_DIM, r) || !read_vector(q1.ptr(), PW85_SYM, a) ||
+  int m = method_of(method.ptr());
+  if (m < 0 || !plain_options(nthreads.ptr(), check.ptr()) ||
+      !read_vector(r12.ptr(), PW85_DIM, r) || !read_vector(q1.ptr(), PW85_SYM, a) ||
       !read_vector(q2.ptr(), PW85_SYM, b))
     return nb::none();
   pw85_result res;
   int status;
   {
     nb::gil_scoped_release unlocked;
-    status = pw85_contact_function_method(r, a, b, method, &res);
+    status = pw85_contact_function_method(r, a, b, m, &res);
   }
-  if (status != PW85_OK) return nb::int_(status);
+  if (status != PW85_OK) return nb::none();
   nb::object mu2 = nb::steal(new_float64(res.mu2));
   if (!mu2.is_valid()) throw nb::python_error();
   nb::object lambda = nb::steal(new_float64(res.lambda));
   if (!lambda.is_valid()) throw nb::python_error();
-  return nb::make_tuple(mu2, lambda);
+  if (check.ptr() == Py_True) return nb::make_tuple(mu2, lambda);
+  return nb::make_tuple(mu2, lambda, 0);
 }
 
 // The pair calls run the C pair call over chunks of this many pairs into a
@@ -225,14 +298,46 @@ int contact_function_pairs(long long m, nb::handle r12, nb::handle q1, nb::handl
 
 }  // namespace
 
+// Whether the NumpyArrayFields of a strided float64 view agree with what
+// the buffer protocol reports for it.
+bool check_numpy_fields(nb::handle numpy) {
+  nb::object base = numpy.attr("arange")(12.0);
+  nb::object view = base[nb::slice(1, 12, 4)];  // 3 elements, stride 32 bytes
+  if (Py_TYPE(view.ptr()) != ndarray_type) return false;
+  Py_buffer buffer;
+  if (PyObject_GetBuffer(view.ptr(), &buffer, PyBUF_RECORDS_RO) != 0) {
+    PyErr_Clear();
+    return false;
+  }
+  const NumpyArrayFields *a = reinterpret_cast<const NumpyArrayFields *>(view.ptr());
+  bool same = a->data == buffer.buf && a->nd == 1 && buffer.ndim == 1 &&
+              a->dimensions[0] == 3 && buffer.shape[0] == 3 && a->strides[0] == 32 &&
+              buffer.strides[0] == 32 && a->descr == float64_descr;
+  PyBuffer_Release(&buffer);
+  if (!same) return false;
+  double v[3];
+  for (int k = 0; k < 3; ++k) std::memcpy(v + k, a->data + k * a->strides[0], sizeof(double));
+  return v[0] == 1.0 && v[1] == 5.0 && v[2] == 9.0;
+}
+
 NB_MODULE(_ext, m) {
-  nb::object float64 = nb::module_::import_("numpy").attr("float64");
+  nb::module_ numpy = nb::module_::import_("numpy");
+  ndarray_type = reinterpret_cast<PyTypeObject *>(numpy.attr("ndarray").inc_ref().ptr());
+  float64_descr = numpy.attr("dtype")(numpy.attr("float64")).inc_ref().ptr();
+  numpy_fields_ok = check_numpy_fields(numpy);
+  m.attr("numpy_fields") = numpy_fields_ok;
+  nb::object float64 = numpy.attr("float64");
+  if (!PyType_Check(float64.ptr()) ||
+      !PyType_IsSubtype(reinterpret_cast<PyTypeObject *>(float64.ptr()), &PyFloat_Type) ||
+      reinterpret_cast<PyTypeObject *>(float64.ptr())->tp_basicsize != sizeof(PyFloatObject))
+    throw nb::import_error("pw85._ext: numpy.float64 does not extend float as expected");
   float64_type = float64.release().ptr();  // kept for the life of the process
   m.doc() = "Compiled one-pair and per-pair calls of pw85 (internal; use pw85).";
   m.def("overlap1", &overlap1, nb::arg("r12").none(), nb::arg("q1").none(),
-        nb::arg("q2").none());
+        nb::arg("q2").none(), nb::arg("nthreads").none(), nb::arg("check").none());
   m.def("contact_function1", &contact_function1, nb::arg("r12").none(), nb::arg("q1").none(),
-        nb::arg("q2").none(), nb::arg("method"));
+        nb::arg("q2").none(), nb::arg("method").none(), nb::arg("nthreads").none(),
+        nb::arg("check").none());
   m.def("overlap_pairs", &overlap_pairs);
   m.def("contact_function_pairs", &contact_function_pairs);
 }

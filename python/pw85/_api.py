@@ -407,6 +407,11 @@ def contact_function(r12, q1, q2, method="default", nthreads=0, check=True):
     scalars for one pair, arrays of the batch shape otherwise. check=True:
     pw85.Error on the first pair whose status is not PW85_OK; check=False:
     returns (mu2, lambda_, status), failing pairs NaN."""
+    if _ext is not None:
+        # one pair that succeeds, plain options: the result; else None
+        v = _ext.contact_function1(r12, q1, q2, method, nthreads, check)
+        if v is not None:
+            return v
     # the one-pair path is inlined (a function call costs ~0.1 us here)
     meth = _METHODS.get(method) if type(method) is str else None
     if meth is None:
@@ -414,13 +419,7 @@ def contact_function(r12, q1, q2, method="default", nthreads=0, check=True):
     nt = nthreads
     if type(nt) is not int or not 0 <= nt <= _INT_MAX:
         nt = _nthreads(nt)
-    if _ext is not None:
-        # one pair of float64 buffers or lists: (mu2, lambda_), else None
-        # (not one pair: converted below) or a status (reported below)
-        v = _ext.contact_function1(r12, q1, q2, meth)
-        if type(v) is tuple:
-            return v if check else (v[0], v[1], 0)
-    elif (type(r12) is _ND and type(q1) is _ND and type(q2) is _ND
+    if (_ext is None and type(r12) is _ND and type(q1) is _ND and type(q2) is _ND
             and r12.shape == _S3 and q1.shape == _S6 and q2.shape == _S6
             and r12.dtype is F64 and q1.dtype is F64 and q2.dtype is F64):
         try:
@@ -469,16 +468,15 @@ def overlap(r12, q1, q2, nthreads=0, check=True):
     """Exact overlap verdicts (mu^2 < 1) of pairs, by pw85_overlap_pairs;
     shapes as contact_function. Returns a bool (one pair) or bool array.
     check=False: returns (overlap, status), failing pairs False."""
+    if _ext is not None:
+        # one pair that succeeds, plain options: the result; else None
+        v = _ext.overlap1(r12, q1, q2, nthreads, check)
+        if v is not None:
+            return v
     nt = nthreads
     if type(nt) is not int or not 0 <= nt <= _INT_MAX:
         nt = _nthreads(nt)
-    if _ext is not None:
-        # one pair of float64 buffers or lists: a bool, else None (not one
-        # pair: converted below) or a status (reported below)
-        v = _ext.overlap1(r12, q1, q2)
-        if type(v) is bool:
-            return v if check else (v, 0)
-    elif (type(r12) is _ND and type(q1) is _ND and type(q2) is _ND
+    if (_ext is None and type(r12) is _ND and type(q1) is _ND and type(q2) is _ND
             and r12.shape == _S3 and q1.shape == _S6 and q2.shape == _S6
             and r12.dtype is F64 and q1.dtype is F64 and q2.dtype is F64):
         try:

@@ -60,6 +60,9 @@ def test_module_in_use():
     assert _api._ext is _native.ext
     assert {"overlap1", "contact_function1", "overlap_pairs",
             "contact_function_pairs"} <= set(dir(_native.ext))
+    # NumPy's array fields read directly (checked at import against the
+    # buffer protocol); else every array goes through the buffer protocol.
+    assert _native.ext.numpy_fields is True
 
 
 @pytest.mark.parametrize("method", list(pw85.Method))
@@ -137,17 +140,35 @@ def test_one_pair_inputs():
     assert pw85.contact_function(r.astype(np.float32), a, b) == pw85.contact_function(
         r.astype(np.float32).astype(np.float64), a, b)
     assert np.array_equal(pw85.contact_function(r[None], a, b)[0], [ref[0]])
-    assert _native.ext.contact_function1("abc", a, b, 0) is None
-    assert _native.ext.overlap1(r, a, [1.0] * 5) is None
-    assert _native.ext.overlap1([True, 0., 0.], a, b) is None
+    ext = _native.ext
+    assert ext.contact_function1("abc", a, b, 0, 0, True) is None
+    assert ext.overlap1(r, a, [1.0] * 5, 0, True) is None
+    assert ext.overlap1([True, 0., 0.], a, b, 0, True) is None
+    # Options the module leaves to the Python function (which converts or
+    # rejects them): the same results or errors as without the module.
+    assert ext.overlap1(r, a, b, 0, 1) is None and ext.overlap1(r, a, b, True, True) is None
+    assert ext.overlap1(r, a, b, -1, True) is None and ext.overlap1(r, a, b, 2**31, True) is None
+    assert ext.contact_function1(r, a, b, "Brent", 0, True) is None
+    assert ext.contact_function1(r, a, b, 5, 0, True) is None
+    assert ext.contact_function1(r, a, b, True, 0, True) is None
+    assert pw85.contact_function(r, a, b, method="Brent", nthreads=np.int64(2), check=1) == (
+        pw85.contact_function(r, a, b, method=pw85.Method.BRENT))
+    for method in ("brent", 1, pw85.Method.BRENT):
+        assert ext.contact_function1(r, a, b, method, 3, True) == pw85.contact_function(
+            r, a, b, method="brent")
+    assert pw85.overlap(r, a, b, nthreads=np.int32(1), check=0) == (pw85.overlap(r, a, b), 0)
+    with pytest.raises(TypeError, match="nthreads"):
+        pw85.overlap(r, a, b, nthreads=True)
+    with pytest.raises(ValueError, match="method"):
+        pw85.contact_function(r, a, b, method="fast")
 
 
 def test_one_pair_errors():
-    # A failing pair: the status from the module, the error message from
-    # the batch path (argument named).
+    # A failing pair: None from the module, the error or status from the
+    # Python function (argument named).
     bad = np.array([1., 0., 0., -1., 0., 1.])
-    assert _native.ext.overlap1(R12[0], bad, Q2[0]) == pw85.Status.ERR_NOT_SPD
-    assert _native.ext.contact_function1(R12[0], Q1[0], bad, 0) == pw85.Status.ERR_NOT_SPD
+    assert _native.ext.overlap1(R12[0], bad, Q2[0], 0, True) is None
+    assert _native.ext.contact_function1(R12[0], Q1[0], bad, 0, 0, False) is None
     with pytest.raises(pw85.Error, match="q2 not positive definite"):
         pw85.contact_function(R12[0], Q1[0], bad)
     with pytest.raises(pw85.Error, match="r12 holds a non-finite"):
