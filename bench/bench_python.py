@@ -26,7 +26,8 @@ arrays; the C program bench_one_pair (bench/bench_one_pair.c, run here on a
 file of those pairs) times pw85_overlap and pw85_contact_function_method
 over them, --reps passes after an untimed one; then the same passes of
 Python loops `for k in range(pairs): f(r12[k], q1[k], q2[k])` calling
-pw85.overlap, pw85.contact_function, the bare ctypes calls, pypw85's
+pw85.overlap, pw85.contact_function (through the compiled module when
+present, then through ctypes), the bare ctypes calls, pypw85's
 contact_function (Brent) and a no-op function (the cost of the loop and of
 a Python call). The overhead of a Python call is its time per call minus
 the C call's, pass by pass (median, min-max). Prints Markdown tables
@@ -45,7 +46,7 @@ import numpy as np
 
 import pw85
 import pypw85
-from pw85 import _lib, _native
+from pw85 import _api, _lib, _native
 
 
 def pairs(n, seed=1):
@@ -140,9 +141,21 @@ def main():
                 f(*p)
         return run
 
+    def ctypes_path(run):
+        def without_module():
+            saved, _api._ext = _api._ext, None
+            try:
+                run()
+            finally:
+                _api._ext = saved
+        return without_module
+
     one = [
         ("pw85.overlap", "pw85_overlap", loop(pw85.overlap)),
         ("pw85.contact_function", "pw85_contact_function_method", loop(pw85.contact_function)),
+        ("pw85.overlap, ctypes path", "pw85_overlap", ctypes_path(loop(pw85.overlap))),
+        ("pw85.contact_function, ctypes path", "pw85_contact_function_method",
+         ctypes_path(loop(pw85.contact_function))),
         ("bare ctypes pw85_overlap", "pw85_overlap", loop_raw(ov_c)),
         ("bare ctypes pw85_contact_function_method", "pw85_contact_function_method",
          loop_raw(lambda r, a, b: cf_method(r, a, b, 0, byref))),
