@@ -167,7 +167,10 @@ def _raise(func, ret, status, rows_of, batch):
         raise Error(f"pw85.{func}: {status_name(ret)} ({strerror(ret)})", ret, None)
     k = int(nz[0])
     s = int(flat[k])
-    where = f"pair {k}" if len(batch) <= 1 else f"pair {np.unravel_index(k, batch)} (flat index {k})"
+    if len(batch) <= 1:
+        where = f"pair {k}"
+    else:  # Python ints: NumPy 2 writes its integers as np.int64(...)
+        where = f"pair {tuple(int(i) for i in np.unravel_index(k, batch))} (flat index {k})"
     reason = rows_of(k, s)
     if isinstance(reason, dict):
         reason = _reason(s, k, reason)
@@ -957,7 +960,7 @@ def contact_time(r12: ArrayLike, v12: ArrayLike, q1: ArrayLike, w1: ArrayLike,
                 if s == Status.ERR_INVALID_ARGUMENT and all(np.all(np.isfinite(x)) for x in r.values()):
                     return "r12 + t v12 or t w leaves the range of double within t_max"
                 if s == Status.ERR_NO_CONVERGENCE:
-                    return f"contact-free up to t = {t.reshape(-1)[k]!r} only"
+                    return f"contact-free up to t = {float(t.reshape(-1)[k])!r} only"
                 return r
             _raise("contact_time", ret, st, rows_of, batch)
         bad = (st != 0) & (st != Status.ERR_NO_CONVERGENCE)
