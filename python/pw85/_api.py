@@ -206,6 +206,78 @@ def _scratch():
     return t
 
 
+# ---- docstrings: sections shared by the public functions, filled in by _doc
+
+_DOC_SECTIONS = {
+    "PAIR_PARAMS": """\
+    r12 : array_like, shape (..., 3)
+        Centre of ellipsoid 2 minus centre of ellipsoid 1.
+    q1, q2 : array_like, shape (..., 6)
+        Quadratic forms of the ellipsoids (upper triangle of Q row by row:
+        Q00, Q01, Q02, Q11, Q12, Q22); the batch axes of r12, q1 and q2
+        broadcast.""",
+    "NTH": """\
+    nthreads : int, default 0
+        OpenMP threads of the C batch call (0: the OpenMP default).""",
+    "CHECK": """\
+    check : bool, default True
+        False: no exception for failing pairs; their status is returned.""",
+    "ARG_ERR": """\
+    TypeError
+        An argument that is not an array of real numbers (None, a string,
+        complex or bool values), ``nthreads`` not an int.
+    ValueError
+        A wrong shape, batch shapes that do not broadcast, ``nthreads < 0``.""",
+    "COMMON_ERR": """\
+    pw85.Error
+        A pair fails in the C library (non-finite value, matrix not positive
+        definite, ...): ``.status``, ``.status_name``, ``.index`` (flat index
+        of the first failing pair) and a message naming the argument.
+        Not raised with ``check=False``.""",
+    "TUT": """\
+    >>> import pw85
+    >>> q1 = pw85.spheroid(10., 0.1, [0., 0., 1.])
+    >>> q2 = pw85.spheroid(0.5, 5., [1., 0., 0.])""",
+    "SCENE_PARAMS": """\
+    centres : array_like, shape (n, 3)
+        Centres of the n ellipsoids.
+    q : array_like, shape (n, 6) or (6,)
+        Their quadratic forms, or one for all.
+    pairs : array_like of int, shape (m, 2)
+        Index pairs (i, j); each pair is computed with r12 = c_j − c_i (its
+        periodic image in the box).
+    box : array_like, shape (6,), or None
+        Periodic box {Lx, Ly, Lz, xy, xz, yz} (HOOMD/GSD convention), or
+        None (docs/batch.md).""",
+    "SCENE_ERR": """\
+    TypeError, ValueError
+        A wrong type or shape of an argument, a box with lengths not finite
+        and > 0.
+    pw85.Error
+        A pair fails (index outside [0, n), non-finite value, matrix not
+        positive definite, bounding spheres larger than half the box):
+        ``.index`` is the index of the pair in ``pairs``. Not raised with
+        ``check=False``.""",
+    "SCENE_EX": """\
+    >>> import numpy as np, pw85
+    >>> centres = np.array([[0., 0., 0.], [1.5, 0., 0.], [9.5, 0., 0.]])
+    >>> sphere = [1., 0., 0., 1., 0., 1.]
+    >>> pairs = [[0, 1], [0, 2]]""",
+    "DCA_PARAMS": """\
+    u : array_like, shape (..., 3)
+        Directions of the line of centres (not necessarily unit, not 0).
+    q1, q2 : array_like, shape (..., 6)
+        Quadratic forms; the batch axes of u, q1 and q2 broadcast.""",
+}
+
+
+def _doc(f):
+    """f with the {NAME} sections of its docstring filled in from _DOC_SECTIONS."""
+    if f.__doc__:  # None under python -OO
+        f.__doc__ = f.__doc__.format(**_DOC_SECTIONS)
+    return f
+
+
 # ---- constructors ---------------------------------------------------------
 
 def spheroid(a: ArrayLike, c: ArrayLike, n: ArrayLike) -> FloatArray:
@@ -523,6 +595,7 @@ def ellipsoid_axes(q: ArrayLike) -> Tuple[FloatArray, FloatArray, FloatArray]:
 
 # ---- contact function, overlap, contact geometry over per-pair arrays ------
 
+@_doc
 def contact_function(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike,
                      method: Union[Method, int, str] = "default", nthreads: int = 0,
                      check: bool = True) -> Tuple[Any, ...]:
@@ -536,20 +609,13 @@ def contact_function(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike,
 
     Parameters
     ----------
-    r12 : array_like, shape (..., 3)
-        Centre of ellipsoid 2 minus centre of ellipsoid 1.
-    q1, q2 : array_like, shape (..., 6)
-        Quadratic forms of the ellipsoids (upper triangle of Q row by row:
-        Q00, Q01, Q02, Q11, Q12, Q22); the batch axes of r12, q1 and q2
-        broadcast.
+{PAIR_PARAMS}
     method : pw85.Method, int or str, default "default"
         ``pw85.Method.DEFAULT`` (relative accuracy 1e-14, with an error
         estimate), ``BRENT`` (pw85 1.0's iteration), ``NEWTON``,
         ``RATIONAL``, ``ZHENG``; its value or its name (docs/methods.md).
-    nthreads : int, default 0
-        OpenMP threads of the C batch call (0: the OpenMP default).
-    check : bool, default True
-        False: no exception for failing pairs; their status is returned.
+{NTH}
+{CHECK}
 
     Returns
     -------
@@ -560,26 +626,16 @@ def contact_function(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike,
 
     Raises
     ------
-    TypeError
-        An argument that is not an array of real numbers (None, a string,
-        complex or bool values), ``nthreads`` not an int.
-    ValueError
-        A wrong shape, batch shapes that do not broadcast, ``nthreads < 0``.
+{ARG_ERR}
         An unknown method.
-    pw85.Error
-        A pair fails in the C library (non-finite value, matrix not positive
-        definite, ...): ``.status``, ``.status_name``, ``.index`` (flat index
-        of the first failing pair) and a message naming the argument.
-        Not raised with ``check=False``.
+{COMMON_ERR}
 
     Examples
     --------
     The tutorial pair of pw85 1.0 (the last bits of λ depend on the CPU,
     docs/api.md):
 
-    >>> import pw85
-    >>> q1 = pw85.spheroid(10., 0.1, [0., 0., 1.])
-    >>> q2 = pw85.spheroid(0.5, 5., [1., 0., 0.])
+{TUT}
     >>> mu2, lambda_ = pw85.contact_function([0.7, -0.7, 1.1], q1, q2)
     >>> print(mu2, lambda_)  # doctest: +ELLIPSIS
     3.3627060406386295 0.1668589553405547...
@@ -644,6 +700,7 @@ def contact_function(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike,
     return _out(mu2, batch), _out(lam, batch), _out(st, batch)
 
 
+@_doc
 def overlap(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: int = 0,
             check: bool = True) -> Any:
     """Exact overlap verdicts (μ² < 1) of pairs of ellipsoids.
@@ -653,16 +710,9 @@ def overlap(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: int = 0,
 
     Parameters
     ----------
-    r12 : array_like, shape (..., 3)
-        Centre of ellipsoid 2 minus centre of ellipsoid 1.
-    q1, q2 : array_like, shape (..., 6)
-        Quadratic forms of the ellipsoids (upper triangle of Q row by row:
-        Q00, Q01, Q02, Q11, Q12, Q22); the batch axes of r12, q1 and q2
-        broadcast.
-    nthreads : int, default 0
-        OpenMP threads of the C batch call (0: the OpenMP default).
-    check : bool, default True
-        False: no exception for failing pairs; their status is returned.
+{PAIR_PARAMS}
+{NTH}
+{CHECK}
 
     Returns
     -------
@@ -673,22 +723,12 @@ def overlap(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: int = 0,
 
     Raises
     ------
-    TypeError
-        An argument that is not an array of real numbers (None, a string,
-        complex or bool values), ``nthreads`` not an int.
-    ValueError
-        A wrong shape, batch shapes that do not broadcast, ``nthreads < 0``.
-    pw85.Error
-        A pair fails in the C library (non-finite value, matrix not positive
-        definite, ...): ``.status``, ``.status_name``, ``.index`` (flat index
-        of the first failing pair) and a message naming the argument.
-        Not raised with ``check=False``.
+{ARG_ERR}
+{COMMON_ERR}
 
     Examples
     --------
-    >>> import pw85
-    >>> q1 = pw85.spheroid(10., 0.1, [0., 0., 1.])
-    >>> q2 = pw85.spheroid(0.5, 5., [1., 0., 0.])
+{TUT}
     >>> pw85.overlap([0.7, -0.7, 1.1], q1, q2)
     False
     >>> print(pw85.overlap([[0.7, -0.7, 1.1], [0., 0., 0.5]], q1, q2))
@@ -761,6 +801,7 @@ def _pair_records(name, cfunc, dtype, r12, q1, q2, nthreads, check):
     return _out(out, batch), _out(st, batch)
 
 
+@_doc
 def contact(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: int = 0,
             check: bool = True) -> Any:
     """Contact geometry of pairs of ellipsoids (``pw85_contact_pairs``).
@@ -775,16 +816,9 @@ def contact(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: int = 0,
 
     Parameters
     ----------
-    r12 : array_like, shape (..., 3)
-        Centre of ellipsoid 2 minus centre of ellipsoid 1.
-    q1, q2 : array_like, shape (..., 6)
-        Quadratic forms of the ellipsoids (upper triangle of Q row by row:
-        Q00, Q01, Q02, Q11, Q12, Q22); the batch axes of r12, q1 and q2
-        broadcast.
-    nthreads : int, default 0
-        OpenMP threads of the C batch call (0: the OpenMP default).
-    check : bool, default True
-        False: no exception for failing pairs; their status is returned.
+{PAIR_PARAMS}
+{NTH}
+{CHECK}
 
     Returns
     -------
@@ -796,16 +830,8 @@ def contact(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: int = 0,
 
     Raises
     ------
-    TypeError
-        An argument that is not an array of real numbers (None, a string,
-        complex or bool values), ``nthreads`` not an int.
-    ValueError
-        A wrong shape, batch shapes that do not broadcast, ``nthreads < 0``.
-    pw85.Error
-        A pair fails in the C library (non-finite value, matrix not positive
-        definite, ...): ``.status``, ``.status_name``, ``.index`` (flat index
-        of the first failing pair) and a message naming the argument.
-        Not raised with ``check=False``.
+{ARG_ERR}
+{COMMON_ERR}
         r12 = 0 fails (no contact geometry).
 
     Examples
@@ -822,6 +848,7 @@ def contact(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: int = 0,
                          nthreads, check)
 
 
+@_doc
 def contact_derivatives(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: int = 0,
                         check: bool = True) -> Any:
     """Derivatives of μ² for forces, torques and the Hessian (``pw85_contact_derivatives_pairs``).
@@ -834,16 +861,9 @@ def contact_derivatives(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: 
 
     Parameters
     ----------
-    r12 : array_like, shape (..., 3)
-        Centre of ellipsoid 2 minus centre of ellipsoid 1.
-    q1, q2 : array_like, shape (..., 6)
-        Quadratic forms of the ellipsoids (upper triangle of Q row by row:
-        Q00, Q01, Q02, Q11, Q12, Q22); the batch axes of r12, q1 and q2
-        broadcast.
-    nthreads : int, default 0
-        OpenMP threads of the C batch call (0: the OpenMP default).
-    check : bool, default True
-        False: no exception for failing pairs; their status is returned.
+{PAIR_PARAMS}
+{NTH}
+{CHECK}
 
     Returns
     -------
@@ -855,16 +875,8 @@ def contact_derivatives(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: 
 
     Raises
     ------
-    TypeError
-        An argument that is not an array of real numbers (None, a string,
-        complex or bool values), ``nthreads`` not an int.
-    ValueError
-        A wrong shape, batch shapes that do not broadcast, ``nthreads < 0``.
-    pw85.Error
-        A pair fails in the C library (non-finite value, matrix not positive
-        definite, ...): ``.status``, ``.status_name``, ``.index`` (flat index
-        of the first failing pair) and a message naming the argument.
-        Not raised with ``check=False``.
+{ARG_ERR}
+{COMMON_ERR}
         r12 = 0 fails (no derivative there).
 
     Examples
@@ -880,6 +892,7 @@ def contact_derivatives(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: 
                          DERIVATIVES_DTYPE, r12, q1, q2, nthreads, check)
 
 
+@_doc
 def contact_time(r12: ArrayLike, v12: ArrayLike, q1: ArrayLike, w1: ArrayLike,
                  q2: ArrayLike, w2: ArrayLike, t_max: float, nthreads: int = 0,
                  check: bool = True) -> Any:
@@ -899,10 +912,8 @@ def contact_time(r12: ArrayLike, v12: ArrayLike, q1: ArrayLike, w1: ArrayLike,
         Angular velocities; the batch axes of all six broadcast.
     t_max : float
         Horizon, finite and > 0.
-    nthreads : int, default 0
-        OpenMP threads of the C batch call (0: the OpenMP default).
-    check : bool, default True
-        False: no exception for failing pairs; their status is returned.
+{NTH}
+{CHECK}
 
     Returns
     -------
@@ -915,17 +926,9 @@ def contact_time(r12: ArrayLike, v12: ArrayLike, q1: ArrayLike, w1: ArrayLike,
 
     Raises
     ------
-    TypeError
-        An argument that is not an array of real numbers (None, a string,
-        complex or bool values), ``nthreads`` not an int.
-    ValueError
-        A wrong shape, batch shapes that do not broadcast, ``nthreads < 0``.
+{ARG_ERR}
         t_max not finite and > 0.
-    pw85.Error
-        A pair fails in the C library (non-finite value, matrix not positive
-        definite, ...): ``.status``, ``.status_name``, ``.index`` (flat index
-        of the first failing pair) and a message naming the argument.
-        Not raised with ``check=False``.
+{COMMON_ERR}
 
     Examples
     --------
@@ -1027,6 +1030,7 @@ def _scene_rows(c, qq, p, bx):
     return rows_of
 
 
+@_doc
 def scene_overlap(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
                   box: Optional[ArrayLike] = None, nthreads: int = 0,
                   check: bool = True) -> Any:
@@ -1034,20 +1038,9 @@ def scene_overlap(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
 
     Parameters
     ----------
-    centres : array_like, shape (n, 3)
-        Centres of the n ellipsoids.
-    q : array_like, shape (n, 6) or (6,)
-        Their quadratic forms, or one for all.
-    pairs : array_like of int, shape (m, 2)
-        Index pairs (i, j); each pair is computed with r12 = c_j − c_i (its
-        periodic image in the box).
-    box : array_like, shape (6,), or None
-        Periodic box {Lx, Ly, Lz, xy, xz, yz} (HOOMD/GSD convention), or
-        None (docs/batch.md).
-    nthreads : int, default 0
-        OpenMP threads of the C batch call (0: the OpenMP default).
-    check : bool, default True
-        False: no exception for failing pairs; their status is returned.
+{SCENE_PARAMS}
+{NTH}
+{CHECK}
 
     Returns
     -------
@@ -1056,21 +1049,11 @@ def scene_overlap(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
 
     Raises
     ------
-    TypeError, ValueError
-        A wrong type or shape of an argument, a box with lengths not finite
-        and > 0.
-    pw85.Error
-        A pair fails (index outside [0, n), non-finite value, matrix not
-        positive definite, bounding spheres larger than half the box):
-        ``.index`` is the index of the pair in ``pairs``. Not raised with
-        ``check=False``.
+{SCENE_ERR}
 
     Examples
     --------
-    >>> import numpy as np, pw85
-    >>> centres = np.array([[0., 0., 0.], [1.5, 0., 0.], [9.5, 0., 0.]])
-    >>> sphere = [1., 0., 0., 1., 0., 1.]
-    >>> pairs = [[0, 1], [0, 2]]
+{SCENE_EX}
     >>> print(pw85.scene_overlap(centres, sphere, pairs))
     [ True False]
     >>> print(pw85.scene_overlap(centres, sphere, pairs, box=[10., 10., 10., 0., 0., 0.]))
@@ -1091,6 +1074,7 @@ def scene_overlap(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
     return res if check else (res, st)
 
 
+@_doc
 def scene_contact_function(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
                            box: Optional[ArrayLike] = None,
                            method: Union[Method, int, str] = "default", nthreads: int = 0,
@@ -1099,22 +1083,11 @@ def scene_contact_function(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
 
     Parameters
     ----------
-    centres : array_like, shape (n, 3)
-        Centres of the n ellipsoids.
-    q : array_like, shape (n, 6) or (6,)
-        Their quadratic forms, or one for all.
-    pairs : array_like of int, shape (m, 2)
-        Index pairs (i, j); each pair is computed with r12 = c_j − c_i (its
-        periodic image in the box).
-    box : array_like, shape (6,), or None
-        Periodic box {Lx, Ly, Lz, xy, xz, yz} (HOOMD/GSD convention), or
-        None (docs/batch.md).
+{SCENE_PARAMS}
     method : pw85.Method, int or str, default "default"
         As ``pw85.contact_function``.
-    nthreads : int, default 0
-        OpenMP threads of the C batch call (0: the OpenMP default).
-    check : bool, default True
-        False: no exception for failing pairs; their status is returned.
+{NTH}
+{CHECK}
 
     Returns
     -------
@@ -1124,21 +1097,11 @@ def scene_contact_function(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
 
     Raises
     ------
-    TypeError, ValueError
-        A wrong type or shape of an argument, a box with lengths not finite
-        and > 0.
-    pw85.Error
-        A pair fails (index outside [0, n), non-finite value, matrix not
-        positive definite, bounding spheres larger than half the box):
-        ``.index`` is the index of the pair in ``pairs``. Not raised with
-        ``check=False``.
+{SCENE_ERR}
 
     Examples
     --------
-    >>> import numpy as np, pw85
-    >>> centres = np.array([[0., 0., 0.], [1.5, 0., 0.], [9.5, 0., 0.]])
-    >>> sphere = [1., 0., 0., 1., 0., 1.]
-    >>> pairs = [[0, 1], [0, 2]]
+{SCENE_EX}
     >>> mu2, lambda_ = pw85.scene_contact_function(centres, sphere, pairs)
     >>> print(mu2.round(12), lambda_)
     [ 0.5625 22.5625] [0.5 0.5]
@@ -1184,6 +1147,7 @@ def _scene_records(name, cfunc, dtype, centres, q, pairs, box, nthreads, check):
     return out if check else (out, st)
 
 
+@_doc
 def scene_contact(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
                   box: Optional[ArrayLike] = None, nthreads: int = 0,
                   check: bool = True) -> Any:
@@ -1194,20 +1158,9 @@ def scene_contact(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
 
     Parameters
     ----------
-    centres : array_like, shape (n, 3)
-        Centres of the n ellipsoids.
-    q : array_like, shape (n, 6) or (6,)
-        Their quadratic forms, or one for all.
-    pairs : array_like of int, shape (m, 2)
-        Index pairs (i, j); each pair is computed with r12 = c_j − c_i (its
-        periodic image in the box).
-    box : array_like, shape (6,), or None
-        Periodic box {Lx, Ly, Lz, xy, xz, yz} (HOOMD/GSD convention), or
-        None (docs/batch.md).
-    nthreads : int, default 0
-        OpenMP threads of the C batch call (0: the OpenMP default).
-    check : bool, default True
-        False: no exception for failing pairs; their status is returned.
+{SCENE_PARAMS}
+{NTH}
+{CHECK}
 
     Returns
     -------
@@ -1217,21 +1170,11 @@ def scene_contact(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
 
     Raises
     ------
-    TypeError, ValueError
-        A wrong type or shape of an argument, a box with lengths not finite
-        and > 0.
-    pw85.Error
-        A pair fails (index outside [0, n), non-finite value, matrix not
-        positive definite, bounding spheres larger than half the box):
-        ``.index`` is the index of the pair in ``pairs``. Not raised with
-        ``check=False``.
+{SCENE_ERR}
 
     Examples
     --------
-    >>> import numpy as np, pw85
-    >>> centres = np.array([[0., 0., 0.], [1.5, 0., 0.], [9.5, 0., 0.]])
-    >>> sphere = [1., 0., 0., 1., 0., 1.]
-    >>> pairs = [[0, 1], [0, 2]]
+{SCENE_EX}
     >>> c = pw85.scene_contact(centres, sphere, pairs)
     >>> print(c["x0"][0], c["depth"])
     [0.75 0.   0.  ] [ 0.5 -7.5]
@@ -1240,6 +1183,7 @@ def scene_contact(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
                           pairs, box, nthreads, check)
 
 
+@_doc
 def scene_contact_derivatives(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
                               box: Optional[ArrayLike] = None, nthreads: int = 0,
                               check: bool = True) -> Any:
@@ -1251,20 +1195,9 @@ def scene_contact_derivatives(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike
 
     Parameters
     ----------
-    centres : array_like, shape (n, 3)
-        Centres of the n ellipsoids.
-    q : array_like, shape (n, 6) or (6,)
-        Their quadratic forms, or one for all.
-    pairs : array_like of int, shape (m, 2)
-        Index pairs (i, j); each pair is computed with r12 = c_j − c_i (its
-        periodic image in the box).
-    box : array_like, shape (6,), or None
-        Periodic box {Lx, Ly, Lz, xy, xz, yz} (HOOMD/GSD convention), or
-        None (docs/batch.md).
-    nthreads : int, default 0
-        OpenMP threads of the C batch call (0: the OpenMP default).
-    check : bool, default True
-        False: no exception for failing pairs; their status is returned.
+{SCENE_PARAMS}
+{NTH}
+{CHECK}
 
     Returns
     -------
@@ -1274,21 +1207,11 @@ def scene_contact_derivatives(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike
 
     Raises
     ------
-    TypeError, ValueError
-        A wrong type or shape of an argument, a box with lengths not finite
-        and > 0.
-    pw85.Error
-        A pair fails (index outside [0, n), non-finite value, matrix not
-        positive definite, bounding spheres larger than half the box):
-        ``.index`` is the index of the pair in ``pairs``. Not raised with
-        ``check=False``.
+{SCENE_ERR}
 
     Examples
     --------
-    >>> import numpy as np, pw85
-    >>> centres = np.array([[0., 0., 0.], [1.5, 0., 0.], [9.5, 0., 0.]])
-    >>> sphere = [1., 0., 0., 1., 0., 1.]
-    >>> pairs = [[0, 1], [0, 2]]
+{SCENE_EX}
     >>> d = pw85.scene_contact_derivatives(centres, sphere, pairs)
     >>> print(d["d_r12"][0])
     [0.75 0.   0.  ]
@@ -1325,6 +1248,7 @@ def _loop(func, name, r12, q1, q2, rname, dims, nout, call, check):
     return batch, outs, st
 
 
+@_doc
 def dca(u: ArrayLike, q1: ArrayLike, q2: ArrayLike, method: Union[Method, int, str] = "default",
         check: bool = True) -> Any:
     """Distance of closest approach of ellipsoids along u (``pw85_dca``).
@@ -1334,15 +1258,11 @@ def dca(u: ArrayLike, q1: ArrayLike, q2: ArrayLike, method: Union[Method, int, s
 
     Parameters
     ----------
-    u : array_like, shape (..., 3)
-        Directions of the line of centres (not necessarily unit, not 0).
-    q1, q2 : array_like, shape (..., 6)
-        Quadratic forms; the batch axes of u, q1 and q2 broadcast.
+{DCA_PARAMS}
     method : pw85.Method, int or str, default "default"
         ``ZHENG``: rotation of a plane (Zheng, Iglesias & Palffy-Muhoray);
         any other method: 1/sqrt(F(u/|u|)) with F by that method.
-    check : bool, default True
-        False: no exception for failing pairs; their status is returned.
+{CHECK}
 
     Returns
     -------
@@ -1353,11 +1273,7 @@ def dca(u: ArrayLike, q1: ArrayLike, q2: ArrayLike, method: Union[Method, int, s
     ------
     TypeError, ValueError
         A wrong type or shape of an argument, an unknown method.
-    pw85.Error
-        A pair fails in the C library (non-finite value, matrix not positive
-        definite, ...): ``.status``, ``.status_name``, ``.index`` (flat index
-        of the first failing pair) and a message naming the argument.
-        Not raised with ``check=False``.
+{COMMON_ERR}
 
     Examples
     --------
@@ -1372,21 +1288,18 @@ def dca(u: ArrayLike, q1: ArrayLike, q2: ArrayLike, method: Union[Method, int, s
     return _out(d, batch) if check else (_out(d, batch), _out(st, batch))
 
 
+@_doc
 def dca_ex(u: ArrayLike, q1: ArrayLike, q2: ArrayLike, theta_tol: float = 0.0,
            check: bool = True) -> Tuple[Any, ...]:
     """Distance of closest approach by plane rotation with a tolerance (``pw85_dca_ex``).
 
     Parameters
     ----------
-    u : array_like, shape (..., 3)
-        Directions of the line of centres (not necessarily unit, not 0).
-    q1, q2 : array_like, shape (..., 6)
-        Quadratic forms; the batch axes of u, q1 and q2 broadcast.
+{DCA_PARAMS}
     theta_tol : float, default 0.0
         Tolerance (radians, >= 0) on the angle of the optimal plane; 0:
         ``PW85_DCA_THETA_TOL`` (1e-8).
-    check : bool, default True
-        False: no exception for failing pairs; their status is returned.
+{CHECK}
 
     Returns
     -------
@@ -1399,11 +1312,7 @@ def dca_ex(u: ArrayLike, q1: ArrayLike, q2: ArrayLike, theta_tol: float = 0.0,
     ------
     TypeError, ValueError
         A wrong type or shape of an argument, theta_tol not finite and >= 0.
-    pw85.Error
-        A pair fails in the C library (non-finite value, matrix not positive
-        definite, ...): ``.status``, ``.status_name``, ``.index`` (flat index
-        of the first failing pair) and a message naming the argument.
-        Not raised with ``check=False``.
+{COMMON_ERR}
 
     Examples
     --------
@@ -1427,6 +1336,7 @@ def dca_ex(u: ArrayLike, q1: ArrayLike, q2: ArrayLike, theta_tol: float = 0.0,
     return _out(d, batch), _out(ev, batch), _out(st, batch)
 
 
+@_doc
 def dca_2d(u: ArrayLike, q1: ArrayLike, q2: ArrayLike, check: bool = True) -> Any:
     """Distance of closest approach of ellipses along u (``pw85_dca_2d``, closed form).
 
@@ -1435,9 +1345,8 @@ def dca_2d(u: ArrayLike, q1: ArrayLike, q2: ArrayLike, check: bool = True) -> An
     u : array_like, shape (..., 2)
         Directions of the line of centres (not 0).
     q1, q2 : array_like, shape (..., 3)
-        Quadratic forms of the ellipses {Q00, Q01, Q11}; batch axes broadcast.
-    check : bool, default True
-        False: no exception for failing pairs; their status is returned.
+        Quadratic forms of the ellipses {{Q00, Q01, Q11}}; batch axes broadcast.
+{CHECK}
 
     Returns
     -------
@@ -1448,11 +1357,7 @@ def dca_2d(u: ArrayLike, q1: ArrayLike, q2: ArrayLike, check: bool = True) -> An
     ------
     TypeError, ValueError
         A wrong type or shape of an argument.
-    pw85.Error
-        A pair fails in the C library (non-finite value, matrix not positive
-        definite, ...): ``.status``, ``.status_name``, ``.index`` (flat index
-        of the first failing pair) and a message naming the argument.
-        Not raised with ``check=False``.
+{COMMON_ERR}
 
     Examples
     --------
@@ -1465,6 +1370,7 @@ def dca_2d(u: ArrayLike, q1: ArrayLike, q2: ArrayLike, check: bool = True) -> An
     return _out(d, batch) if check else (_out(d, batch), _out(st, batch))
 
 
+@_doc
 def contact_function_2d(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike,
                         check: bool = True) -> Tuple[Any, ...]:
     """Contact function μ² and λ of ellipses (``pw85_contact_function_2d``).
@@ -1474,9 +1380,8 @@ def contact_function_2d(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike,
     r12 : array_like, shape (..., 2)
         Centre of ellipse 2 minus centre of ellipse 1.
     q1, q2 : array_like, shape (..., 3)
-        Quadratic forms {Q00, Q01, Q11}; batch axes broadcast.
-    check : bool, default True
-        False: no exception for failing pairs; their status is returned.
+        Quadratic forms {{Q00, Q01, Q11}}; batch axes broadcast.
+{CHECK}
 
     Returns
     -------
@@ -1487,11 +1392,7 @@ def contact_function_2d(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike,
     ------
     TypeError, ValueError
         A wrong type or shape of an argument.
-    pw85.Error
-        A pair fails in the C library (non-finite value, matrix not positive
-        definite, ...): ``.status``, ``.status_name``, ``.index`` (flat index
-        of the first failing pair) and a message naming the argument.
-        Not raised with ``check=False``.
+{COMMON_ERR}
 
     Examples
     --------

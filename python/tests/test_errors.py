@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 import pw85
+from conftest import misaligned
 
 R12 = np.array([0.7, -0.7, 1.1])
 Q1 = pw85.spheroid(10., 0.1, [0., 0., 1.])
@@ -186,16 +187,6 @@ def test_dca_2d_errors():
             pw85.dca_ex(R12, Q1, Q2, theta_tol=tol)
 
 
-def _misaligned(x):
-    """A copy of x at an odd byte offset into a bytes buffer (NumPy flags it
-    not aligned; the C library reads aligned doubles)."""
-    buf = bytearray(x.nbytes + 1)
-    v = np.frombuffer(buf, dtype=x.dtype, count=x.size, offset=1).reshape(x.shape)
-    v[...] = x
-    assert not v.flags.aligned
-    return v
-
-
 def test_misaligned_arrays_are_copied():
     from pw85 import _api
     import pypw85
@@ -204,10 +195,10 @@ def test_misaligned_arrays_are_copied():
     q1 = np.tile(Q1, (40, 1))
     q2 = np.tile(Q2, (40, 1))
     for x, last in ((r12, 3), (q1, 6)):
-        a = _api._arr(_misaligned(x), "x", last)
+        a = _api._arr(misaligned(x), "x", last)
         assert a.flags.aligned and a.flags.c_contiguous and np.array_equal(a, x)
-    assert pypw85._in(_misaligned(R12), "r12", 3).flags.aligned
-    bad = [_misaligned(x) for x in (r12, q1, q2)]
+    assert pypw85._in(misaligned(R12), "r12", 3).flags.aligned
+    bad = [misaligned(x) for x in (r12, q1, q2)]
     assert np.array_equal(pw85.overlap(*bad), pw85.overlap(r12, q1, q2))
     for got, ref in zip(pw85.contact_function(*bad), pw85.contact_function(r12, q1, q2)):
         assert np.array_equal(got, ref)
@@ -218,10 +209,10 @@ def test_misaligned_arrays_are_copied():
     centres = rng.uniform(0, 5, (10, 3))
     pairs = np.array([[i, j] for i in range(10) for j in range(i + 1, 10)], dtype=np.int64)
     ref = pw85.scene_contact_function(centres, q1[:10], pairs)
-    got = pw85.scene_contact_function(_misaligned(centres), _misaligned(q1[:10]), _misaligned(pairs))
+    got = pw85.scene_contact_function(misaligned(centres), misaligned(q1[:10]), misaligned(pairs))
     assert all(np.array_equal(g, r) for g, r in zip(got, ref))
     # pypw85 (pw85 1.0's API), inputs and a misaligned output array.
     ref = pypw85.contact_function(R12, Q1, Q2)
-    out = _misaligned(np.zeros(2))
-    got = pypw85.contact_function(_misaligned(R12), _misaligned(Q1), _misaligned(Q2), out)
+    out = misaligned(np.zeros(2))
+    got = pypw85.contact_function(misaligned(R12), misaligned(Q1), misaligned(Q2), out)
     assert got is out and np.array_equal(out, ref)

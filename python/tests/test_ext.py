@@ -14,6 +14,7 @@ import pytest
 
 import pw85
 from pw85 import _api, _lib, _native
+from conftest import misaligned
 
 if _native.ext is None:
     if os.environ.get("PW85_REQUIRE_EXTENSION"):
@@ -106,15 +107,6 @@ def test_ctypes_path_same_bits(monkeypatch):
     assert [pw85.contact_function(R12[k], Q1[k], Q2[k]) for k in range(200)] == with_ext
     assert np.array_equal(bits(pw85.contact_function(R12, Q1, Q2)), bits(batch))
     assert np.array_equal(pw85.overlap(R12, Q1, Q2), verdicts)
-
-
-def misaligned(x):
-    """A copy of x at an odd byte offset into a bytes buffer."""
-    buf = bytearray(x.nbytes + 1)
-    v = np.frombuffer(buf, dtype=x.dtype, count=x.size, offset=1).reshape(x.shape)
-    v[...] = x
-    assert not v.flags.aligned
-    return v
 
 
 def test_one_pair_inputs():
