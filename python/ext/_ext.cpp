@@ -21,10 +21,10 @@
 // batch.
 //
 // The pair calls take the C-contiguous, aligned arrays the Python functions
-// prepare (checked here: a ValueError otherwise) and return the C call's
-// status (PW85_OK or that of the first failing pair); the outputs of a
-// failing pair are those of the C call (overlap False). Every C call runs
-// without the GIL.
+// prepare (checked here: a ValueError otherwise), status None when the
+// per-pair statuses are not wanted, and return the C call's status (PW85_OK
+// or that of the first failing pair); the outputs of a failing pair are
+// those of the C call (overlap False). Every C call runs without the GIL.
 #include <nanobind/nanobind.h>
 
 #include <algorithm>
@@ -139,10 +139,12 @@ bool read_vector(PyObject *obj, Py_ssize_t n, double *out) {
 }
 
 // A C-contiguous, aligned buffer of `count` items of `itemsize` bytes
-// (writable if asked), held for the duration of a pair call.
+// (writable if asked), held for the duration of a pair call; None gives a
+// null pointer (the status arrays, which the C pair calls accept as NULL).
 class Array {
  public:
   Array(nb::handle obj, const char *name, long long count, Py_ssize_t itemsize, bool writable) {
+    if (writable && obj.is_none() && std::strcmp(name, "status") == 0) return;
     int flags = PyBUF_C_CONTIGUOUS | (writable ? PyBUF_WRITABLE : 0);
     if (PyObject_GetBuffer(obj.ptr(), &view_, flags) != 0) throw nb::python_error();
     held_ = true;
@@ -248,6 +250,7 @@ constexpr long long chunk_pairs = 32768;
 int overlap_pairs(long long m, nb::handle r12, nb::handle q1, nb::handle q2,
                   nb::handle overlap, nb::handle status, int nthreads) {
   Array s(status, "status", m, sizeof(int), true), ov(overlap, "overlap", m, 1, true);
+  int *st_out = s.data<int>();
   Array r(r12, "r12", m * PW85_DIM, sizeof(double), false);
   Array a(q1, "q1", m * PW85_SYM, sizeof(double), false);
   Array b(q2, "q2", m * PW85_SYM, sizeof(double), false);
@@ -261,7 +264,7 @@ int overlap_pairs(long long m, nb::handle r12, nb::handle q1, nb::handle q2,
     int st = pw85_overlap_pairs(len, r.data<const double>() + PW85_DIM * k0,
                                 a.data<const double>() + PW85_SYM * k0,
                                 b.data<const double>() + PW85_SYM * k0, verdicts.get(),
-                                s.data<int>() + k0, nthreads);
+                                st_out ? st_out + k0 : nullptr, nthreads);
     if (ret == PW85_OK) ret = st;
     for (long long k = 0; k < len; ++k) out[k0 + k] = verdicts[k] > 0;
   }
@@ -281,12 +284,13 @@ int contact_function_pairs(long long m, nb::handle r12, nb::handle q1, nb::handl
   nb::gil_scoped_release unlocked;
   int ret = PW85_OK;
   double *mu2_out = x.data<double>(), *lambda_out = l.data<double>();
+  int *st_out = s.data<int>();
   for (long long k0 = 0; k0 < m; k0 += chunk_pairs) {
     long long len = std::min(chunk_pairs, m - k0);
     int st = pw85_contact_function_pairs(len, r.data<const double>() + PW85_DIM * k0,
                                          a.data<const double>() + PW85_SYM * k0,
                                          b.data<const double>() + PW85_SYM * k0, method,
-                                         res.get(), s.data<int>() + k0, nthreads);
+                                         res.get(), st_out ? st_out + k0 : nullptr, nthreads);
     if (ret == PW85_OK) ret = st;
     for (long long k = 0; k < len; ++k) {
       mu2_out[k0 + k] = res[k].mu2;
@@ -338,6 +342,9 @@ NB_MODULE(_ext, m) {
   m.def("contact_function1", &contact_function1, nb::arg("r12").none(), nb::arg("q1").none(),
         nb::arg("q2").none(), nb::arg("method").none(), nb::arg("nthreads").none(),
         nb::arg("check").none());
-  m.def("overlap_pairs", &overlap_pairs);
-  m.def("contact_function_pairs", &contact_function_pairs);
+  m.def("overlap_pairs", &overlap_pairs, nb::arg("m"), nb::arg("r12"), nb::arg("q1"),
+        nb::arg("q2"), nb::arg("overlap"), nb::arg("status").none(), nb::arg("nthreads"));
+  m.def("contact_function_pairs", &contact_function_pairs, nb::arg("m"), nb::arg("r12"),
+        nb::arg("q1"), nb::arg("q2"), nb::arg("method"), nb::arg("mu2"), nb::arg("lambda"),
+        nb::arg("status").none(), nb::arg("nthreads"));
 }

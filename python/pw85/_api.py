@@ -677,9 +677,14 @@ def contact_function(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike,
     batch, (r, a, b) = _pairs(r12, q1, q2)
     m = _size(batch)
     if _ext is not None:
+        # The statuses only for check=False, or once a pair has failed (the
+        # call again: the same bits): no status array for a batch that passes.
         mu2, lam = np.empty(batch), np.empty(batch)
-        st = np.empty(batch, np.intc)  # every entry written
+        st = None if check else np.empty(batch, np.intc)  # every entry written
         ret = _ext.contact_function_pairs(m, r, a, b, meth, mu2, lam, st, nt) if m else 0
+        if ret and st is None:
+            st = np.empty(batch, np.intc)
+            ret = _ext.contact_function_pairs(m, r, a, b, meth, mu2, lam, st, nt)
     else:
         res = np.empty(batch, RESULT_DTYPE)
         st = np.zeros(batch, np.intc)
@@ -761,9 +766,13 @@ def overlap(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: int = 0,
     batch, (r, a, b) = _pairs(r12, q1, q2)
     m = _size(batch)
     if _ext is not None:
+        # statuses as in contact_function
         res = np.empty(batch, bool)
-        st = np.empty(batch, np.intc)  # every entry written
+        st = None if check else np.empty(batch, np.intc)  # every entry written
         ret = _ext.overlap_pairs(m, r, a, b, res, st, nt) if m else 0
+        if ret and st is None:
+            st = np.empty(batch, np.intc)
+            ret = _ext.overlap_pairs(m, r, a, b, res, st, nt)
     else:
         ov = np.empty(batch, np.intc)
         st = np.zeros(batch, np.intc)

@@ -203,6 +203,11 @@ def test_batch_over_chunks():
     keep = st == 0
     assert np.array_equal(mu2[keep], np.tile(ref_mu2, m // 7)[keep])
     assert np.array_equal(ov[keep], np.tile(pw85.overlap(R12[:7], Q1[:7], Q2[:7]), m // 7)[keep])
-    with pytest.raises(pw85.Error) as info:
-        pw85.contact_function(r, a, b)
-    assert info.value.index == 40000 and info.value.status == pw85.Status.ERR_NOT_SPD
+    # check=True runs the pair call without statuses, then again with them
+    # once it reports a failure.
+    for call in (pw85.contact_function, pw85.overlap):
+        with pytest.raises(pw85.Error) as info:
+            call(r, a, b)
+        assert info.value.index == 40000 and info.value.status == pw85.Status.ERR_NOT_SPD
+    assert _native.ext.overlap_pairs(m, r, a, b, np.empty(m, bool), None, 1) == (
+        pw85.Status.ERR_NOT_SPD)
