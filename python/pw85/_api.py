@@ -1,14 +1,20 @@
 """The vectorised API of pw85 (see the package docstring)."""
+from __future__ import annotations
+
 import ctypes
 import math
 import operator
 import threading
+from typing import Any, Optional, Tuple, Union
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ._lib import (lib, Error, Method, Status, status_name, strerror,
                    Result, Contact, RESULT_DTYPE, CONTACT_DTYPE, DERIVATIVES_DTYPE)
+from ._native import ext as _ext
 
+FloatArray = NDArray[np.float64]
 F64 = np.dtype(np.float64)
 _ND = np.ndarray
 _F = np.float64
@@ -21,10 +27,18 @@ _METHODS.update({int(m): int(m) for m in Method})
 
 # ---- argument conversion --------------------------------------------------
 
+def _aligned(x):
+    """x itself when its data are aligned for its dtype, else an aligned copy
+    (a view at an odd byte offset into a buffer: the C library reads the
+    elements as aligned doubles)."""
+    return x if x.flags.aligned else x.copy()
+
+
 def _arr(x, name, last, ndim=None):
-    """x as a C-contiguous float64 array whose last axis has length `last`
-    (a copy only when x is not one already)."""
-    if not (type(x) is np.ndarray and x.dtype is F64 and x.flags.c_contiguous):
+    """x as a C-contiguous, aligned float64 array whose last axis has length
+    `last` (a copy only when x is not one already)."""
+    if not (type(x) is np.ndarray and x.dtype is F64 and x.flags.c_contiguous
+            and x.flags.aligned):
         if x is None or isinstance(x, (str, bytes)):
             raise TypeError(f"{name}: expected an array of real numbers, got {type(x).__name__}")
         try:
@@ -38,7 +52,7 @@ def _arr(x, name, last, ndim=None):
                 raise TypeError(f"{name}: not an array of real numbers ({e})") from None
         elif a.dtype.kind not in "iuf":
             raise TypeError(f"{name}: expected real numbers, got dtype {a.dtype}")
-        x = np.asarray(a, dtype=F64, order="C")
+        x = _aligned(np.asarray(a, dtype=F64, order="C"))
     if last is not None and (x.ndim == 0 or x.shape[-1] != last):
         raise ValueError(f"{name}: expected shape (..., {last}), got {x.shape}")
     if ndim is not None and x.ndim != ndim:
@@ -153,7 +167,10 @@ def _raise(func, ret, status, rows_of, batch):
         raise Error(f"pw85.{func}: {status_name(ret)} ({strerror(ret)})", ret, None)
     k = int(nz[0])
     s = int(flat[k])
-    where = f"pair {k}" if len(batch) <= 1 else f"pair {np.unravel_index(k, batch)} (flat index {k})"
+    if len(batch) <= 1:
+        where = f"pair {k}"
+    else:  # Python ints: NumPy 2 writes its integers as np.int64(...)
+        where = f"pair {tuple(int(i) for i in np.unravel_index(k, batch))} (flat index {k})"
     reason = rows_of(k, s)
     if isinstance(reason, dict):
         reason = _reason(s, k, reason)
@@ -189,13 +206,116 @@ def _scratch():
     return t
 
 
+# ---- docstrings: sections shared by the public functions, filled in by _doc
+
+_DOC_SECTIONS = {
+    "PAIR_PARAMS": """\
+    r12 : array_like, shape (..., 3)
+        Centre of ellipsoid 2 minus centre of ellipsoid 1.
+    q1, q2 : array_like, shape (..., 6)
+        Quadratic forms of the ellipsoids (upper triangle of Q row by row:
+        Q00, Q01, Q02, Q11, Q12, Q22); the batch axes of r12, q1 and q2
+        broadcast.""",
+    "NTH": """\
+    nthreads : int, default 0
+        OpenMP threads of the C batch call (0: the OpenMP default).""",
+    "CHECK": """\
+    check : bool, default True
+        False: no exception for failing pairs; their status is returned.""",
+    "ARG_ERR": """\
+    TypeError
+        An argument that is not an array of real numbers (None, a string,
+        complex or bool values), ``nthreads`` not an int.
+    ValueError
+        A wrong shape, batch shapes that do not broadcast, ``nthreads < 0``.""",
+    "COMMON_ERR": """\
+    pw85.Error
+        A pair fails in the C library (non-finite value, matrix not positive
+        definite, ...): ``.status``, ``.status_name``, ``.index`` (flat index
+        of the first failing pair) and a message naming the argument.
+        Not raised with ``check=False``.""",
+    "TUT": """\
+    >>> import pw85
+    >>> q1 = pw85.spheroid(10., 0.1, [0., 0., 1.])
+    >>> q2 = pw85.spheroid(0.5, 5., [1., 0., 0.])""",
+    "SCENE_PARAMS": """\
+    centres : array_like, shape (n, 3)
+        Centres of the n ellipsoids.
+    q : array_like, shape (n, 6) or (6,)
+        Their quadratic forms, or one for all.
+    pairs : array_like of int, shape (m, 2)
+        Index pairs (i, j); each pair is computed with r12 = c_j − c_i (its
+        periodic image in the box).
+    box : array_like, shape (6,), or None
+        Periodic box {Lx, Ly, Lz, xy, xz, yz} (HOOMD/GSD convention), or
+        None (docs/batch.md).""",
+    "SCENE_ERR": """\
+    TypeError, ValueError
+        A wrong type or shape of an argument, a box with lengths not finite
+        and > 0.
+    pw85.Error
+        A pair fails (index outside [0, n), non-finite value, matrix not
+        positive definite, bounding spheres larger than half the box):
+        ``.index`` is the index of the pair in ``pairs``. Not raised with
+        ``check=False``.""",
+    "SCENE_EX": """\
+    >>> import numpy as np, pw85
+    >>> centres = np.array([[0., 0., 0.], [1.5, 0., 0.], [9.5, 0., 0.]])
+    >>> sphere = [1., 0., 0., 1., 0., 1.]
+    >>> pairs = [[0, 1], [0, 2]]""",
+    "DCA_PARAMS": """\
+    u : array_like, shape (..., 3)
+        Directions of the line of centres (not necessarily unit, not 0).
+    q1, q2 : array_like, shape (..., 6)
+        Quadratic forms; the batch axes of u, q1 and q2 broadcast.""",
+}
+
+
+def _doc(f):
+    """f with the {NAME} sections of its docstring filled in from _DOC_SECTIONS."""
+    if f.__doc__:  # None under python -OO
+        f.__doc__ = f.__doc__.format(**_DOC_SECTIONS)
+    return f
+
+
 # ---- constructors ---------------------------------------------------------
 
-def spheroid(a, c, n):
-    """Quadratic form of spheroids: equatorial radius a, polar radius c, unit
-    axis n (shape (..., 3)); a, c and the batch axes of n broadcast; returns
-    shape (..., 6). ValueError naming the argument when pw85_spheroid fails
-    (a or c not finite and > 0, n = 0 or not finite)."""
+def spheroid(a: ArrayLike, c: ArrayLike, n: ArrayLike) -> FloatArray:
+    """Quadratic forms of spheroids (``pw85_spheroid``).
+
+    Q = c² n nᵀ + a² (I − n nᵀ) for the unit axis n.
+
+    Parameters
+    ----------
+    a : array_like
+        Equatorial radii, > 0.
+    c : array_like
+        Polar radii, > 0.
+    n : array_like, shape (..., 3)
+        Unit axes of revolution (normalised by the C call); a, c and the
+        batch axes of n broadcast.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
+        The quadratic forms.
+
+    Raises
+    ------
+    TypeError
+        An argument that is not a number or array of real numbers.
+    ValueError
+        a or c not finite and > 0, n zero or not finite (naming the argument
+        and the pair), a wrong shape.
+
+    Examples
+    --------
+    >>> import pw85
+    >>> print(pw85.spheroid(10., 0.1, [0., 0., 1.]))
+    [ 1.e+02 -0.e+00 -0.e+00  1.e+02 -0.e+00  1.e-02]
+    >>> pw85.spheroid([1., 2.], 0.5, [1., 0., 0.]).shape
+    (2, 6)
+    """
     a_ = _real(a, "a")
     c_ = _real(c, "c")
     n_ = _arr(n, "n", 3)
@@ -262,11 +382,39 @@ def _range_reason(s, rk):
     return None
 
 
-def ellipsoid(radii, axes):
-    """Quadratic form of ellipsoids: semi-axes radii (..., 3), unit axes in
-    the rows of axes (..., 3, 3); returns shape (..., 6). pw85.Error naming
-    the argument on failure (a radius not finite and > 0: radii; axes not
-    orthonormal to 1e-10 or not finite: axes)."""
+def ellipsoid(radii: ArrayLike, axes: ArrayLike) -> FloatArray:
+    """Quadratic forms of ellipsoids of given semi-axes and axes (``pw85_ellipsoid``).
+
+    Q = Σₖ radii[k]² axes[k] axes[k]ᵀ.
+
+    Parameters
+    ----------
+    radii : array_like, shape (..., 3)
+        Semi-axes, finite and > 0.
+    axes : array_like, shape (..., 3, 3)
+        Unit axes in the ROWS (``axes[..., k, :]`` is the axis of
+        ``radii[..., k]``), orthonormal to 1e-10.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
+        The quadratic forms, batch axes of radii and axes broadcast.
+
+    Raises
+    ------
+    TypeError, ValueError
+        An argument that is not an array of real numbers; a wrong shape.
+    pw85.Error
+        A radius not finite and > 0 (``ERR_NOT_SPD``), axes not orthonormal
+        (``ERR_NOT_ORTHONORMAL``), a squared radius out of the range of
+        double (``ERR_RANGE``); the message names the argument and the pair.
+
+    Examples
+    --------
+    >>> import numpy as np, pw85
+    >>> print(pw85.ellipsoid([1., 2., 3.], np.eye(3)))
+    [1. 0. 0. 4. 0. 9.]
+    """
     def reason(s, rk, ok):
         if s == Status.ERR_NOT_ORTHONORMAL:
             return "axes are not orthonormal to 1e-10"
@@ -275,12 +423,40 @@ def ellipsoid(radii, axes):
                     _matrices(axes, "axes"), "axes", (3, 3), reason)
 
 
-def ellipsoid_rotation(radii, rot):
-    """Quadratic form of ellipsoids: semi-axes radii (..., 3), rotation
-    matrices rot (..., 3, 3) whose COLUMNS are the body axes (R mapping body
-    to lab frame; pw85.ellipsoid takes the rows); Q = R diag(radii^2) R^T,
-    shape (..., 6). pw85.Error naming the argument on failure (rot not
-    orthonormal to 1e-10; a reflection is accepted)."""
+def ellipsoid_rotation(radii: ArrayLike, rot: ArrayLike) -> FloatArray:
+    """Quadratic forms of ellipsoids from rotation matrices (``pw85_ellipsoid_rotation``).
+
+    Q = R diag(radii²) Rᵀ, R mapping the body frame to the lab frame.
+
+    Parameters
+    ----------
+    radii : array_like, shape (..., 3)
+        Semi-axes along the body axes x, y, z, finite and > 0.
+    rot : array_like, shape (..., 3, 3)
+        Rotation matrices whose COLUMNS are the body axes (``pw85.ellipsoid``
+        takes them in rows), orthonormal to 1e-10; a reflection is accepted.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
+        The quadratic forms, batch axes of radii and rot broadcast.
+
+    Raises
+    ------
+    TypeError, ValueError
+        An argument that is not an array of real numbers; a wrong shape.
+    pw85.Error
+        As ``pw85.ellipsoid`` (``rot is not orthonormal to 1e-10``, ...).
+
+    Examples
+    --------
+    A rotation by 90° about z: the body axis x along the lab axis y.
+
+    >>> import numpy as np, pw85
+    >>> rot = np.array([[0., -1., 0.], [1., 0., 0.], [0., 0., 1.]])
+    >>> print(pw85.ellipsoid_rotation([3., 2., 1.], rot) + 0.)
+    [4. 0. 0. 9. 0. 1.]
+    """
     def reason(s, rk, ok):
         if s == Status.ERR_NOT_ORTHONORMAL:
             return "rot is not orthonormal to 1e-10"
@@ -289,13 +465,68 @@ def ellipsoid_rotation(radii, rot):
                     _arr(radii, "radii", 3), _matrices(rot, "rot"), "rot", (3, 3), reason)
 
 
-def ellipsoid_quat(radii, quat):
-    """Quadratic form of ellipsoids: semi-axes radii (..., 3) rotated by the
-    quaternions quat (..., 4) = (w, x, y, z) (HOOMD-blue, GSD, LAMMPS order;
-    body to lab frame). |quat|^2 within 1e-5 of 1 is accepted and normalised
-    (float32 quaternions as read from a GSD file); returns shape (..., 6).
-    LAMMPS shape (diameters): radii = shape / 2. OVITO's (x, y, z, w):
-    quat[..., [3, 0, 1, 2]]. pw85.Error naming the argument on failure."""
+def ellipsoid_quat(radii: ArrayLike, quat: Any, scalar_first: bool = True) -> FloatArray:
+    """Quadratic forms of ellipsoids given by semi-axes and quaternions.
+
+    Q = R diag(radii²) Rᵀ, R the rotation (body to lab frame) of the unit
+    quaternion, by ``pw85_ellipsoid_quat``.
+
+    Parameters
+    ----------
+    radii : array_like, shape (..., 3)
+        Semi-axes along the body axes x, y, z (LAMMPS ``shape`` holds
+        diameters: pass ``shape / 2``).
+    quat : array_like, shape (..., 4), or scipy.spatial.transform.Rotation
+        Quaternions; ``|quat|²`` within 1e-5 of 1 is accepted and normalised
+        (float32 quaternions as read from a GSD file). Any object with an
+        ``as_matrix()`` method, such as a SciPy ``Rotation`` (one or a
+        stack), is taken as its rotation matrices (``pw85.ellipsoid_rotation``).
+    scalar_first : bool, default True
+        True: (w, x, y, z), the order of HOOMD-blue, GSD, LAMMPS and
+        python-fcl; False: (x, y, z, w), the order of SciPy's
+        ``Rotation.as_quat()`` and OVITO. Ignored for a ``Rotation``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
+        The quadratic forms, batch axes of radii and quat broadcast.
+
+    Raises
+    ------
+    TypeError
+        scalar_first not a bool, or an argument not an array of real numbers.
+    ValueError
+        A wrong shape.
+    pw85.Error
+        A radius not finite and > 0, a quaternion not of norm 1 within 1e-5
+        (``ERR_NOT_ORTHONORMAL``), a non-finite value; the message names
+        the argument and the pair.
+
+    Examples
+    --------
+    A rotation by 90° about z maps the body axis x onto the lab axis y:
+
+    >>> import numpy as np, pw85
+    >>> c = np.sqrt(0.5)
+    >>> print(pw85.ellipsoid_quat([3., 2., 1.], [c, 0., 0., c]).round(12) + 0.)
+    [4. 0. 0. 9. 0. 1.]
+    >>> print(pw85.ellipsoid_quat([3., 2., 1.], [0., 0., c, c], scalar_first=False).round(12) + 0.)
+    [4. 0. 0. 9. 0. 1.]
+    """
+    if type(scalar_first) is not bool:
+        raise TypeError(f"scalar_first: expected True or False, got {type(scalar_first).__name__}")
+    if callable(getattr(quat, "as_matrix", None)):
+        def reason_rot(s, rk, ok):
+            if s == Status.ERR_NOT_ORTHONORMAL:
+                return "the rotation's as_matrix() is not orthonormal to 1e-10"
+            return _range_reason(s, rk)
+        return _build_q("ellipsoid_quat", lib.pw85_ellipsoid_rotation, _arr(radii, "radii", 3),
+                        _matrices(quat.as_matrix(), "quat.as_matrix()"), "quat.as_matrix()",
+                        (3, 3), reason_rot)
+    u = _arr(quat, "quat", 4)
+    if not scalar_first:
+        u = np.ascontiguousarray(u[..., [3, 0, 1, 2]])
+
     def reason(s, rk, ok):
         if s == Status.ERR_NOT_ORTHONORMAL:
             return f"quat = {ok.tolist()}: |quat|^2 = {float(ok @ ok)!r} not within 1e-5 of 1"
@@ -303,16 +534,44 @@ def ellipsoid_quat(radii, quat):
             return f"radii = {rk.tolist()}: Q not positive definite once rounded"
         return _range_reason(s, rk)
     return _build_q("ellipsoid_quat", lib.pw85_ellipsoid_quat, _arr(radii, "radii", 3),
-                    _arr(quat, "quat", 4), "quat", (4,), reason)
+                    u, "quat", (4,), reason)
 
 
-def ellipsoid_axes(q):
-    """Semi-axes and orientations of ellipsoids of quadratic forms q (..., 6):
-    returns (radii (..., 3) ascending, rot (..., 3, 3) proper rotations whose
-    column k is the axis of radii[..., k], quat (..., 4) = (w, x, y, z) with
-    w >= 0), so that pw85.ellipsoid_quat(radii, quat) and
-    pw85.ellipsoid_rotation(radii, rot) give q back. pw85.Error naming the
-    first failing q (not finite, not positive definite)."""
+def ellipsoid_axes(q: ArrayLike) -> Tuple[FloatArray, FloatArray, FloatArray]:
+    """Semi-axes and orientations of ellipsoids (``pw85_ellipsoid_axes``).
+
+    The inverse of the constructors: ``pw85.ellipsoid_quat(radii, quat)``
+    and ``pw85.ellipsoid_rotation(radii, rot)`` give q back (within a few
+    ulps).
+
+    Parameters
+    ----------
+    q : array_like, shape (..., 6)
+        Quadratic forms, positive definite.
+
+    Returns
+    -------
+    radii : numpy.ndarray, shape (..., 3)
+        Semi-axes, ascending.
+    rot : numpy.ndarray, shape (..., 3, 3)
+        Proper rotations whose column k is the axis of ``radii[..., k]``.
+    quat : numpy.ndarray, shape (..., 4)
+        The same rotations as quaternions (w, x, y, z), w >= 0.
+
+    Raises
+    ------
+    TypeError, ValueError
+        An argument that is not an array of real numbers; a wrong shape.
+    pw85.Error
+        q not finite or not positive definite (naming the first such q).
+
+    Examples
+    --------
+    >>> import pw85
+    >>> radii, rot, quat = pw85.ellipsoid_axes([9., 0., 0., 4., 0., 1.])
+    >>> print(radii, quat + 0.)
+    [1. 2. 3.] [ 0.70710678  0.         -0.70710678  0.        ]
+    """
     qq = _arr(q, "q", 6)
     batch = qq.shape[:-1]
     m = _size(batch)
@@ -336,13 +595,59 @@ def ellipsoid_axes(q):
 
 # ---- contact function, overlap, contact geometry over per-pair arrays ------
 
-def contact_function(r12, q1, q2, method="default", nthreads=0, check=True):
-    """mu^2 and lambda of pairs (r12 (..., 3), q1 (..., 6), q2 (..., 6),
-    batch axes broadcast) by pw85_contact_function_pairs with `method`
-    (a pw85.Method, its value or its name). Returns (mu2, lambda_): NumPy
-    scalars for one pair, arrays of the batch shape otherwise. check=True:
-    pw85.Error on the first pair whose status is not PW85_OK; check=False:
-    returns (mu2, lambda_, status), failing pairs NaN."""
+@_doc
+def contact_function(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike,
+                     method: Union[Method, int, str] = "default", nthreads: int = 0,
+                     check: bool = True) -> Tuple[Any, ...]:
+    """Contact function μ² and maximiser λ of pairs of ellipsoids.
+
+    μ² < 1: the ellipsoids overlap; μ² = 1: they touch; μ² > 1: they are
+    apart (μ is the factor by which both, centres fixed, must be scaled to
+    touch). One pair runs ``pw85_contact_function_method``, arrays of pairs
+    ``pw85_contact_function_pairs``; the results are bitwise those of the C
+    calls.
+
+    Parameters
+    ----------
+{PAIR_PARAMS}
+    method : pw85.Method, int or str, default "default"
+        ``pw85.Method.DEFAULT`` (relative accuracy 1e-14, with an error
+        estimate), ``BRENT`` (pw85 1.0's iteration), ``NEWTON``,
+        ``RATIONAL``, ``ZHENG``; its value or its name (docs/methods.md).
+{NTH}
+{CHECK}
+
+    Returns
+    -------
+    mu2, lambda_ : numpy.float64 or numpy.ndarray
+        NumPy scalars for one pair, arrays of the batch shape otherwise.
+    status : numpy.ndarray of int, only with check=False
+        Per-pair status (``pw85.Status``); failing pairs have NaN results.
+
+    Raises
+    ------
+{ARG_ERR}
+        An unknown method.
+{COMMON_ERR}
+
+    Examples
+    --------
+    The tutorial pair of pw85 1.0 (the last bits of λ depend on the CPU,
+    docs/api.md):
+
+{TUT}
+    >>> mu2, lambda_ = pw85.contact_function([0.7, -0.7, 1.1], q1, q2)
+    >>> print(mu2, lambda_)  # doctest: +ELLIPSIS
+    3.3627060406386295 0.1668589553405547...
+    >>> mu2, lambda_ = pw85.contact_function([[0.7, -0.7, 1.1], [0., 0., 0.5]], q1, q2)
+    >>> print(mu2.round(6))
+    [3.362706 0.694444]
+    """
+    if _ext is not None:
+        # one pair that succeeds, plain options: the result; else None
+        v = _ext.contact_function1(r12, q1, q2, method, nthreads, check)
+        if v is not None:
+            return v
     # the one-pair path is inlined (a function call costs ~0.1 us here)
     meth = _METHODS.get(method) if type(method) is str else None
     if meth is None:
@@ -350,7 +655,7 @@ def contact_function(r12, q1, q2, method="default", nthreads=0, check=True):
     nt = nthreads
     if type(nt) is not int or not 0 <= nt <= _INT_MAX:
         nt = _nthreads(nt)
-    if (type(r12) is _ND and type(q1) is _ND and type(q2) is _ND
+    if (_ext is None and type(r12) is _ND and type(q1) is _ND and type(q2) is _ND
             and r12.shape == _S3 and q1.shape == _S6 and q2.shape == _S6
             and r12.dtype is F64 and q1.dtype is F64 and q2.dtype is F64):
         try:
@@ -371,14 +676,24 @@ def contact_function(r12, q1, q2, method="default", nthreads=0, check=True):
         return np.float64(_NAN), np.float64(_NAN), int(st)
     batch, (r, a, b) = _pairs(r12, q1, q2)
     m = _size(batch)
-    res = np.empty(batch, RESULT_DTYPE)
-    st = np.zeros(batch, np.intc)
-    ret = 0
-    if m:
-        ret = lib.pw85_contact_function_pairs(m, r.ctypes.data, a.ctypes.data, b.ctypes.data,
-                                              meth, res.ctypes.data, st.ctypes.data, nt)
-    mu2 = res["mu2"].copy()
-    lam = res["lambda"].copy()
+    if _ext is not None:
+        # The statuses only for check=False, or once a pair has failed (the
+        # call again: the same bits): no status array for a batch that passes.
+        mu2, lam = np.empty(batch), np.empty(batch)
+        st = None if check else np.empty(batch, np.intc)  # every entry written
+        ret = _ext.contact_function_pairs(m, r, a, b, meth, mu2, lam, st, nt) if m else 0
+        if ret and st is None:
+            st = np.empty(batch, np.intc)
+            ret = _ext.contact_function_pairs(m, r, a, b, meth, mu2, lam, st, nt)
+    else:
+        res = np.empty(batch, RESULT_DTYPE)
+        st = np.zeros(batch, np.intc)
+        ret = 0
+        if m:
+            ret = lib.pw85_contact_function_pairs(m, r.ctypes.data, a.ctypes.data, b.ctypes.data,
+                                                  meth, res.ctypes.data, st.ctypes.data, nt)
+        mu2 = res["mu2"].copy()
+        lam = res["lambda"].copy()
     if ret:
         if check:
             _raise("contact_function", ret, st, _rows(r12=r, q1=a, q2=b), batch)
@@ -390,14 +705,49 @@ def contact_function(r12, q1, q2, method="default", nthreads=0, check=True):
     return _out(mu2, batch), _out(lam, batch), _out(st, batch)
 
 
-def overlap(r12, q1, q2, nthreads=0, check=True):
-    """Exact overlap verdicts (mu^2 < 1) of pairs, by pw85_overlap_pairs;
-    shapes as contact_function. Returns a bool (one pair) or bool array.
-    check=False: returns (overlap, status), failing pairs False."""
+@_doc
+def overlap(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: int = 0,
+            check: bool = True) -> Any:
+    """Exact overlap verdicts (μ² < 1) of pairs of ellipsoids.
+
+    One pair runs ``pw85_overlap``, arrays of pairs ``pw85_overlap_pairs``;
+    the verdict is exact (docs/overlap.md) and the same on every CPU.
+
+    Parameters
+    ----------
+{PAIR_PARAMS}
+{NTH}
+{CHECK}
+
+    Returns
+    -------
+    overlap : bool or numpy.ndarray of bool
+        A bool for one pair, an array of the batch shape otherwise.
+    status : int or numpy.ndarray of int, only with check=False
+        Per-pair status; failing pairs are False.
+
+    Raises
+    ------
+{ARG_ERR}
+{COMMON_ERR}
+
+    Examples
+    --------
+{TUT}
+    >>> pw85.overlap([0.7, -0.7, 1.1], q1, q2)
+    False
+    >>> print(pw85.overlap([[0.7, -0.7, 1.1], [0., 0., 0.5]], q1, q2))
+    [False  True]
+    """
+    if _ext is not None:
+        # one pair that succeeds, plain options: the result; else None
+        v = _ext.overlap1(r12, q1, q2, nthreads, check)
+        if v is not None:
+            return v
     nt = nthreads
     if type(nt) is not int or not 0 <= nt <= _INT_MAX:
         nt = _nthreads(nt)
-    if (type(r12) is _ND and type(q1) is _ND and type(q2) is _ND
+    if (_ext is None and type(r12) is _ND and type(q1) is _ND and type(q2) is _ND
             and r12.shape == _S3 and q1.shape == _S6 and q2.shape == _S6
             and r12.dtype is F64 and q1.dtype is F64 and q2.dtype is F64):
         try:
@@ -415,15 +765,24 @@ def overlap(r12, q1, q2, nthreads=0, check=True):
         return False, int(v)
     batch, (r, a, b) = _pairs(r12, q1, q2)
     m = _size(batch)
-    ov = np.empty(batch, np.intc)
-    st = np.zeros(batch, np.intc)
-    ret = 0
-    if m:
-        ret = lib.pw85_overlap_pairs(m, r.ctypes.data, a.ctypes.data, b.ctypes.data,
-                                     ov.ctypes.data, st.ctypes.data, nt)
+    if _ext is not None:
+        # statuses as in contact_function
+        res = np.empty(batch, bool)
+        st = None if check else np.empty(batch, np.intc)  # every entry written
+        ret = _ext.overlap_pairs(m, r, a, b, res, st, nt) if m else 0
+        if ret and st is None:
+            st = np.empty(batch, np.intc)
+            ret = _ext.overlap_pairs(m, r, a, b, res, st, nt)
+    else:
+        ov = np.empty(batch, np.intc)
+        st = np.zeros(batch, np.intc)
+        ret = 0
+        if m:
+            ret = lib.pw85_overlap_pairs(m, r.ctypes.data, a.ctypes.data, b.ctypes.data,
+                                         ov.ctypes.data, st.ctypes.data, nt)
+        res = ov > 0
     if ret and check:
         _raise("overlap", ret, st, _rows(r12=r, q1=a, q2=b), batch)
-    res = ov > 0
     if check:
         return _out(res, batch)
     return _out(res, batch), _out(st, batch)
@@ -451,35 +810,144 @@ def _pair_records(name, cfunc, dtype, r12, q1, q2, nthreads, check):
     return _out(out, batch), _out(st, batch)
 
 
-def contact(r12, q1, q2, nthreads=0, check=True):
-    """Contact geometry of pairs by pw85_contact_pairs: a structured array of
-    the batch shape (a record for one pair) with the fields of pw85_contact_t
-    (mu2, lambda, x0 (3), n (3), dca, depth, depth_n). check=False: returns
-    (contact, status), failing pairs NaN."""
+@_doc
+def contact(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: int = 0,
+            check: bool = True) -> Any:
+    """Contact geometry of pairs of ellipsoids (``pw85_contact_pairs``).
+
+    Fields of ``pw85_contact_t`` (docs/contact_geometry.md): ``mu2``,
+    ``lambda``; ``x0`` (3), the contact point of the two ellipsoids scaled
+    by μ, RELATIVE TO THE CENTRE OF ELLIPSOID 1 (add c1 for lab
+    coordinates); ``n`` (3), the unit normal there, pointing from ellipsoid 1
+    to ellipsoid 2; ``dca``, the distance of closest approach along r12;
+    ``depth`` = dca − |r12| (> 0: overlap depth along r12); ``depth_n``, the
+    depth along n.
+
+    Parameters
+    ----------
+{PAIR_PARAMS}
+{NTH}
+{CHECK}
+
+    Returns
+    -------
+    contact : numpy.ndarray of dtype pw85.CONTACT_DTYPE
+        A record for one pair, a structured array of the batch shape
+        otherwise.
+    status : numpy.ndarray of int, only with check=False
+        Per-pair status; failing pairs are NaN.
+
+    Raises
+    ------
+{ARG_ERR}
+{COMMON_ERR}
+        r12 = 0 fails (no contact geometry).
+
+    Examples
+    --------
+    Two unit spheres 3 apart along x: contact point halfway, x0 = (1.5, 0, 0)
+    from centre 1.
+
+    >>> import pw85
+    >>> c = pw85.contact([3., 0., 0.], [1., 0., 0., 1., 0., 1.], [1., 0., 0., 1., 0., 1.])
+    >>> print(c["mu2"].round(12), c["x0"].round(12), c["n"], c["dca"].round(12), c["depth"].round(12))
+    2.25 [1.5 0.  0. ] [1. 0. 0.] 2.0 -1.0
+    """
     return _pair_records("contact", lib.pw85_contact_pairs, CONTACT_DTYPE, r12, q1, q2,
                          nthreads, check)
 
 
-def contact_derivatives(r12, q1, q2, nthreads=0, check=True):
-    """Derivatives of mu^2 for forces, torques and the Hessian
-    (docs/derivatives.md) by pw85_contact_derivatives_pairs: a structured
-    array of the batch shape (a record for one pair) with the fields of
-    pw85_derivatives_t (mu2, lambda, d_r12 (3), d_theta1 (3), d_theta2 (3),
-    d_q1 (6), d_q2 (6), hess_r12 (6)). r12 = 0 is an error (no derivative
-    there). check=False: returns (derivatives, status), failing pairs NaN."""
+@_doc
+def contact_derivatives(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: int = 0,
+                        check: bool = True) -> Any:
+    """Derivatives of μ² for forces, torques and the Hessian (``pw85_contact_derivatives_pairs``).
+
+    Fields of ``pw85_derivatives_t`` (docs/derivatives.md): ``mu2``,
+    ``lambda``, ``d_r12`` (3) = ∂μ²/∂r12, ``d_theta1`` (3) and ``d_theta2``
+    (3), the derivatives under infinitesimal rotations of each ellipsoid,
+    ``d_q1`` (6) and ``d_q2`` (6), those with respect to the matrices,
+    ``hess_r12`` (6), the Hessian with respect to r12.
+
+    Parameters
+    ----------
+{PAIR_PARAMS}
+{NTH}
+{CHECK}
+
+    Returns
+    -------
+    derivatives : numpy.ndarray of dtype pw85.DERIVATIVES_DTYPE
+        A record for one pair, a structured array of the batch shape
+        otherwise.
+    status : numpy.ndarray of int, only with check=False
+        Per-pair status; failing pairs are NaN.
+
+    Raises
+    ------
+{ARG_ERR}
+{COMMON_ERR}
+        r12 = 0 fails (no derivative there).
+
+    Examples
+    --------
+    Unit spheres: μ² = |r12|²/4, so ∂μ²/∂r12 = r12/2.
+
+    >>> import pw85
+    >>> d = pw85.contact_derivatives([3., 0., 4.], [1., 0., 0., 1., 0., 1.], [1., 0., 0., 1., 0., 1.])
+    >>> print(d["mu2"].round(12), d["d_r12"].round(12))
+    6.25 [1.5 0.  2. ]
+    """
     return _pair_records("contact_derivatives", lib.pw85_contact_derivatives_pairs,
                          DERIVATIVES_DTYPE, r12, q1, q2, nthreads, check)
 
 
-def contact_time(r12, v12, q1, w1, q2, w2, t_max, nthreads=0, check=True):
-    """First contact time in [0, t_max] of pairs moving as r12 + t v12 with
-    q1, q2 spinning at angular velocities w1, w2 (docs/contact_time.md), by
-    pw85_contact_time_pairs; r12, v12, w1, w2 (..., 3), q1, q2 (..., 6),
-    batch axes broadcast; t_max one positive number. Returns t (inf: no
-    contact; 0: overlapping or touching now): a NumPy scalar for one pair,
-    an array of the batch shape otherwise. check=False: returns (t, status);
-    failing pairs NaN, except PW85_ERR_NO_CONVERGENCE, which keeps the time
-    up to which the pair is certified free of contact."""
+@_doc
+def contact_time(r12: ArrayLike, v12: ArrayLike, q1: ArrayLike, w1: ArrayLike,
+                 q2: ArrayLike, w2: ArrayLike, t_max: float, nthreads: int = 0,
+                 check: bool = True) -> Any:
+    """First contact time of moving, spinning ellipsoids (``pw85_contact_time_pairs``).
+
+    The pair moves as r12 + t v12 while q1 and q2 spin at the angular
+    velocities w1 and w2 (docs/contact_time.md); the first t in [0, t_max]
+    at which they touch, certified never to miss a collision.
+
+    Parameters
+    ----------
+    r12, v12 : array_like, shape (..., 3)
+        Relative position and velocity (centre 2 minus centre 1).
+    q1, q2 : array_like, shape (..., 6)
+        Quadratic forms at t = 0.
+    w1, w2 : array_like, shape (..., 3)
+        Angular velocities; the batch axes of all six broadcast.
+    t_max : float
+        Horizon, finite and > 0.
+{NTH}
+{CHECK}
+
+    Returns
+    -------
+    t : numpy.float64 or numpy.ndarray
+        inf: no contact in [0, t_max]; 0: overlapping or touching now.
+    status : numpy.ndarray of int, only with check=False
+        Per-pair status; failing pairs NaN, except ``ERR_NO_CONVERGENCE``,
+        which keeps the time up to which the pair is certified free of
+        contact.
+
+    Raises
+    ------
+{ARG_ERR}
+        t_max not finite and > 0.
+{COMMON_ERR}
+
+    Examples
+    --------
+    Unit spheres 4 apart closing at speed 1 touch at t = 2:
+
+    >>> import pw85
+    >>> s, w = [1., 0., 0., 1., 0., 1.], [0., 0., 0.]
+    >>> print(round(float(pw85.contact_time([4., 0., 0.], [-1., 0., 0.], s, w, s, w, 10.)), 12))
+    2.0
+    """
     nt = _nthreads(nthreads)
     tm = float(t_max)
     if not (math.isfinite(tm) and tm > 0):
@@ -504,7 +972,7 @@ def contact_time(r12, v12, q1, w1, q2, w2, t_max, nthreads=0, check=True):
                 if s == Status.ERR_INVALID_ARGUMENT and all(np.all(np.isfinite(x)) for x in r.values()):
                     return "r12 + t v12 or t w leaves the range of double within t_max"
                 if s == Status.ERR_NO_CONVERGENCE:
-                    return f"contact-free up to t = {t.reshape(-1)[k]!r} only"
+                    return f"contact-free up to t = {float(t.reshape(-1)[k])!r} only"
                 return r
             _raise("contact_time", ret, st, rows_of, batch)
         bad = (st != 0) & (st != Status.ERR_NO_CONVERGENCE)
@@ -536,7 +1004,7 @@ def _scene(centres, q, pairs, box):
         raise TypeError(f"pairs: expected integers, got dtype {p.dtype}")
     if p.ndim != 2 or p.shape[1] != 2:
         raise ValueError(f"pairs: expected shape (m, 2), got {p.shape}")
-    p = np.ascontiguousarray(p, dtype=np.int64)
+    p = _aligned(np.ascontiguousarray(p, dtype=np.int64))
     if box is None:
         bx, pbox = None, None
     else:
@@ -571,11 +1039,35 @@ def _scene_rows(c, qq, p, bx):
     return rows_of
 
 
-def scene_overlap(centres, q, pairs, box=None, nthreads=0, check=True):
-    """Overlap verdicts of the index pairs (m, 2) of a scene of n ellipsoids
-    (centres (n, 3), q (n, 6) or one (6,) for all), box {Lx, Ly, Lz, xy, xz,
-    yz} or None, by pw85_scene_overlap. Returns a bool array (m,);
-    check=False: (overlap, status)."""
+@_doc
+def scene_overlap(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
+                  box: Optional[ArrayLike] = None, nthreads: int = 0,
+                  check: bool = True) -> Any:
+    """Overlap verdicts of index pairs of a scene (``pw85_scene_overlap``).
+
+    Parameters
+    ----------
+{SCENE_PARAMS}
+{NTH}
+{CHECK}
+
+    Returns
+    -------
+    overlap : numpy.ndarray of bool, shape (m,)
+    status : numpy.ndarray of int, shape (m,), only with check=False
+
+    Raises
+    ------
+{SCENE_ERR}
+
+    Examples
+    --------
+{SCENE_EX}
+    >>> print(pw85.scene_overlap(centres, sphere, pairs))
+    [ True False]
+    >>> print(pw85.scene_overlap(centres, sphere, pairs, box=[10., 10., 10., 0., 0., 0.]))
+    [ True  True]
+    """
     nt = _nthreads(nthreads)
     c, qq, p, bx, pbox = _scene(centres, q, pairs, box)
     m = p.shape[0]
@@ -591,11 +1083,38 @@ def scene_overlap(centres, q, pairs, box=None, nthreads=0, check=True):
     return res if check else (res, st)
 
 
-def scene_contact_function(centres, q, pairs, box=None, method="default", nthreads=0,
-                           check=True):
-    """mu^2 and lambda of the index pairs of a scene (as scene_overlap), by
-    pw85_scene_contact_function. Returns (mu2, lambda_) arrays (m,);
-    check=False: (mu2, lambda_, status), failing pairs NaN."""
+@_doc
+def scene_contact_function(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
+                           box: Optional[ArrayLike] = None,
+                           method: Union[Method, int, str] = "default", nthreads: int = 0,
+                           check: bool = True) -> Tuple[FloatArray, ...]:
+    """μ² and λ of index pairs of a scene (``pw85_scene_contact_function``).
+
+    Parameters
+    ----------
+{SCENE_PARAMS}
+    method : pw85.Method, int or str, default "default"
+        As ``pw85.contact_function``.
+{NTH}
+{CHECK}
+
+    Returns
+    -------
+    mu2, lambda_ : numpy.ndarray, shape (m,)
+    status : numpy.ndarray of int, shape (m,), only with check=False
+        Failing pairs have NaN results.
+
+    Raises
+    ------
+{SCENE_ERR}
+
+    Examples
+    --------
+{SCENE_EX}
+    >>> mu2, lambda_ = pw85.scene_contact_function(centres, sphere, pairs)
+    >>> print(mu2.round(12), lambda_)
+    [ 0.5625 22.5625] [0.5 0.5]
+    """
     meth = _method(method)
     nt = _nthreads(nthreads)
     c, qq, p, bx, pbox = _scene(centres, q, pairs, box)
@@ -637,20 +1156,75 @@ def _scene_records(name, cfunc, dtype, centres, q, pairs, box, nthreads, check):
     return out if check else (out, st)
 
 
-def scene_contact(centres, q, pairs, box=None, nthreads=0, check=True):
-    """Contact geometry of the index pairs of a scene (as scene_overlap), by
-    pw85_scene_contact: a structured array (m,) as contact();
-    check=False: (contact, status), failing pairs NaN."""
+@_doc
+def scene_contact(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
+                  box: Optional[ArrayLike] = None, nthreads: int = 0,
+                  check: bool = True) -> Any:
+    """Contact geometry of index pairs of a scene (``pw85_scene_contact``).
+
+    Fields as ``pw85.contact``; x0 is relative to the centre of ellipsoid i
+    of the pair (i, j).
+
+    Parameters
+    ----------
+{SCENE_PARAMS}
+{NTH}
+{CHECK}
+
+    Returns
+    -------
+    contact : numpy.ndarray of dtype pw85.CONTACT_DTYPE, shape (m,)
+    status : numpy.ndarray of int, shape (m,), only with check=False
+        Failing pairs are NaN.
+
+    Raises
+    ------
+{SCENE_ERR}
+
+    Examples
+    --------
+{SCENE_EX}
+    >>> c = pw85.scene_contact(centres, sphere, pairs)
+    >>> print(c["x0"][0], c["depth"])
+    [0.75 0.   0.  ] [ 0.5 -7.5]
+    """
     return _scene_records("scene_contact", lib.pw85_scene_contact, CONTACT_DTYPE, centres, q,
                           pairs, box, nthreads, check)
 
 
-def scene_contact_derivatives(centres, q, pairs, box=None, nthreads=0, check=True):
-    """Derivatives of mu^2 for the index pairs (i, j) of a scene (as
-    scene_overlap), by pw85_scene_contact_derivatives: a structured array
-    (m,) as contact_derivatives(), with respect to r12 = c_j - c_i (or its
-    periodic image), q_i (d_q1, d_theta1) and q_j (d_q2, d_theta2).
-    check=False: (derivatives, status), failing pairs NaN."""
+@_doc
+def scene_contact_derivatives(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
+                              box: Optional[ArrayLike] = None, nthreads: int = 0,
+                              check: bool = True) -> Any:
+    """Derivatives of μ² for index pairs of a scene (``pw85_scene_contact_derivatives``).
+
+    Fields as ``pw85.contact_derivatives``, with respect to r12 = c_j − c_i
+    (or its periodic image), q_i (``d_q1``, ``d_theta1``) and q_j (``d_q2``,
+    ``d_theta2``).
+
+    Parameters
+    ----------
+{SCENE_PARAMS}
+{NTH}
+{CHECK}
+
+    Returns
+    -------
+    derivatives : numpy.ndarray of dtype pw85.DERIVATIVES_DTYPE, shape (m,)
+    status : numpy.ndarray of int, shape (m,), only with check=False
+        Failing pairs are NaN.
+
+    Raises
+    ------
+{SCENE_ERR}
+
+    Examples
+    --------
+{SCENE_EX}
+    >>> d = pw85.scene_contact_derivatives(centres, sphere, pairs)
+    >>> print(d["d_r12"][0])
+    [0.75 0.   0.  ]
+    """
     return _scene_records("scene_contact_derivatives", lib.pw85_scene_contact_derivatives,
                           DERIVATIVES_DTYPE, centres, q, pairs, box, nthreads, check)
 
@@ -683,9 +1257,39 @@ def _loop(func, name, r12, q1, q2, rname, dims, nout, call, check):
     return batch, outs, st
 
 
-def dca(u, q1, q2, method="default", check=True):
-    """Distance of closest approach along u (..., 3) by pw85_dca with
-    `method`. Returns d; check=False: (d, status)."""
+@_doc
+def dca(u: ArrayLike, q1: ArrayLike, q2: ArrayLike, method: Union[Method, int, str] = "default",
+        check: bool = True) -> Any:
+    """Distance of closest approach of ellipsoids along u (``pw85_dca``).
+
+    The centre distance at which the ellipsoids, centres on a line of
+    direction u, touch (docs/dca.md).
+
+    Parameters
+    ----------
+{DCA_PARAMS}
+    method : pw85.Method, int or str, default "default"
+        ``ZHENG``: rotation of a plane (Zheng, Iglesias & Palffy-Muhoray);
+        any other method: 1/sqrt(F(u/|u|)) with F by that method.
+{CHECK}
+
+    Returns
+    -------
+    d : numpy.float64 or numpy.ndarray
+    status : numpy.ndarray of int, only with check=False
+
+    Raises
+    ------
+    TypeError, ValueError
+        A wrong type or shape of an argument, an unknown method.
+{COMMON_ERR}
+
+    Examples
+    --------
+    >>> import pw85
+    >>> print(round(float(pw85.dca([1., 0., 0.], [4., 0., 0., 1., 0., 1.], [1., 0., 0., 1., 0., 1.])), 12))
+    3.0
+    """
     meth = _method(method)
     f = lib.pw85_dca
     batch, (d,), st = _loop(f, "dca", u, q1, q2, "u", (3, 6), [(1, F64)],
@@ -693,9 +1297,39 @@ def dca(u, q1, q2, method="default", check=True):
     return _out(d, batch) if check else (_out(d, batch), _out(st, batch))
 
 
-def dca_ex(u, q1, q2, theta_tol=0.0, check=True):
-    """pw85_dca_ex: plane rotation with angle tolerance theta_tol (0: 1e-8).
-    Returns (d, evaluations); check=False: (d, evaluations, status)."""
+@_doc
+def dca_ex(u: ArrayLike, q1: ArrayLike, q2: ArrayLike, theta_tol: float = 0.0,
+           check: bool = True) -> Tuple[Any, ...]:
+    """Distance of closest approach by plane rotation with a tolerance (``pw85_dca_ex``).
+
+    Parameters
+    ----------
+{DCA_PARAMS}
+    theta_tol : float, default 0.0
+        Tolerance (radians, >= 0) on the angle of the optimal plane; 0:
+        ``PW85_DCA_THETA_TOL`` (1e-8).
+{CHECK}
+
+    Returns
+    -------
+    d : numpy.float64 or numpy.ndarray
+    evaluations : numpy.intc or numpy.ndarray
+        Number of 2D problems solved.
+    status : numpy.ndarray of int, only with check=False
+
+    Raises
+    ------
+    TypeError, ValueError
+        A wrong type or shape of an argument, theta_tol not finite and >= 0.
+{COMMON_ERR}
+
+    Examples
+    --------
+    >>> import pw85
+    >>> d, evaluations = pw85.dca_ex([1., 0., 0.], [4., 0., 0., 1., 0., 1.], [1., 0., 0., 1., 0., 1.])
+    >>> print(round(float(d), 12))
+    3.0
+    """
     try:
         tol = float(theta_tol)
     except (TypeError, ValueError):
@@ -711,19 +1345,73 @@ def dca_ex(u, q1, q2, theta_tol=0.0, check=True):
     return _out(d, batch), _out(ev, batch), _out(st, batch)
 
 
-def dca_2d(u, q1, q2, check=True):
-    """Distance of closest approach of ellipses along u (..., 2), q1, q2
-    (..., 3) = {Q00, Q01, Q11}, by pw85_dca_2d. Returns d;
-    check=False: (d, status)."""
+@_doc
+def dca_2d(u: ArrayLike, q1: ArrayLike, q2: ArrayLike, check: bool = True) -> Any:
+    """Distance of closest approach of ellipses along u (``pw85_dca_2d``, closed form).
+
+    Parameters
+    ----------
+    u : array_like, shape (..., 2)
+        Directions of the line of centres (not 0).
+    q1, q2 : array_like, shape (..., 3)
+        Quadratic forms of the ellipses {{Q00, Q01, Q11}}; batch axes broadcast.
+{CHECK}
+
+    Returns
+    -------
+    d : numpy.float64 or numpy.ndarray
+    status : numpy.ndarray of int, only with check=False
+
+    Raises
+    ------
+    TypeError, ValueError
+        A wrong type or shape of an argument.
+{COMMON_ERR}
+
+    Examples
+    --------
+    >>> import pw85
+    >>> print(round(float(pw85.dca_2d([0., 1.], [1., 0., 4.], [1., 0., 1.])), 12))
+    3.0
+    """
     f = lib.pw85_dca_2d
     batch, (d,), st = _loop(f, "dca_2d", u, q1, q2, "u", (2, 3), [(1, F64)], f, check)
     return _out(d, batch) if check else (_out(d, batch), _out(st, batch))
 
 
-def contact_function_2d(r12, q1, q2, check=True):
-    """mu^2 and lambda of ellipses (r12 (..., 2), q1, q2 (..., 3)) by
-    pw85_contact_function_2d. Returns (mu2, lambda_);
-    check=False: (mu2, lambda_, status)."""
+@_doc
+def contact_function_2d(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike,
+                        check: bool = True) -> Tuple[Any, ...]:
+    """Contact function μ² and λ of ellipses (``pw85_contact_function_2d``).
+
+    Parameters
+    ----------
+    r12 : array_like, shape (..., 2)
+        Centre of ellipse 2 minus centre of ellipse 1.
+    q1, q2 : array_like, shape (..., 3)
+        Quadratic forms {{Q00, Q01, Q11}}; batch axes broadcast.
+{CHECK}
+
+    Returns
+    -------
+    mu2, lambda_ : numpy.float64 or numpy.ndarray
+    status : numpy.ndarray of int, only with check=False
+
+    Raises
+    ------
+    TypeError, ValueError
+        A wrong type or shape of an argument.
+{COMMON_ERR}
+
+    Examples
+    --------
+    Unit circles 3 apart: μ² = 9/4, λ = 1/2.
+
+    >>> import pw85
+    >>> mu2, lambda_ = pw85.contact_function_2d([3., 0.], [1., 0., 1.], [1., 0., 1.])
+    >>> print(round(float(mu2), 12), round(float(lambda_), 12))
+    2.25 0.5
+    """
     f = lib.pw85_contact_function_2d
     batch, (out,), st = _loop(f, "contact_function_2d", r12, q1, q2, "r12", (2, 3),
                               [(2, F64)], f, check)

@@ -5,6 +5,8 @@ PW85_LEGACY_LIBRARY), then the paths recorded by `meson install` in
 _config.py (the library relative to this package, then its absolute path),
 then the soname through the dynamic loader's search path.
 """
+from __future__ import annotations
+
 import ctypes
 import enum
 import os
@@ -162,23 +164,84 @@ class Status(enum.IntEnum):
     ERR_RANGE = -7
 
 
-def status_name(status):
-    """'PW85_OK', 'PW85_ERR_...' or 'status <n>' for an unknown code."""
+def status_name(status: int) -> str:
+    """Name of a status code of pw85.h.
+
+    Parameters
+    ----------
+    status : int
+        A status code (``pw85.Status`` or its value).
+
+    Returns
+    -------
+    str
+        ``'PW85_OK'``, ``'PW85_ERR_...'``, or ``'status <n>'`` for a code
+        this module does not know.
+
+    Raises
+    ------
+    TypeError
+        status not an integer.
+
+    Examples
+    --------
+    >>> import pw85
+    >>> pw85.status_name(-2), pw85.status_name(pw85.Status.OK), pw85.status_name(-99)
+    ('PW85_ERR_NOT_SPD', 'PW85_OK', 'status -99')
+    """
     try:
         return "PW85_" + Status(status).name
     except ValueError:
         return f"status {int(status)}"
 
 
-def strerror(status):
-    """pw85_strerror() of the loaded library."""
+def strerror(status: int) -> str:
+    """Description of a status code (``pw85_strerror`` of the loaded library).
+
+    Parameters
+    ----------
+    status : int
+        A status code (``pw85.Status`` or its value).
+
+    Returns
+    -------
+    str
+        The library's one-line description (a generic one for an unknown
+        code).
+
+    Raises
+    ------
+    TypeError
+        status not an integer.
+
+    Examples
+    --------
+    >>> import pw85
+    >>> pw85.strerror(pw85.Status.ERR_NOT_SPD)
+    'matrix not symmetric positive definite (or radius not > 0)'
+    """
     return lib.pw85_strerror(int(status)).decode()
 
 
 class Error(ValueError):
-    """A pair failed in the C library: .status (a Status, or an int for a
-    code this module does not know), .status_name, .index (flat C-order index
-    of the first failing pair, None for a call error)."""
+    """A pair failed in the C library.
+
+    Attributes: ``.status`` (a ``pw85.Status``, or an int for a code this
+    module does not know), ``.status_name``, ``.index`` (flat C-order index
+    of the first failing pair, None for a call error); the message names the
+    argument.
+
+    Examples
+    --------
+    >>> import pw85
+    >>> try:
+    ...     pw85.contact_function([1., 0., 0.], [1., 0., 0., -1., 0., 1.], [1., 0., 0., 1., 0., 1.])
+    ... except pw85.Error as e:
+    ...     print(e.status_name, e.index)
+    ...     print(e)
+    PW85_ERR_NOT_SPD 0
+    pw85.contact_function: pair 0: PW85_ERR_NOT_SPD (matrix not symmetric positive definite (or radius not > 0)): q1 not positive definite
+    """
 
     def __init__(self, message, status, index=None):
         super().__init__(message)

@@ -23,7 +23,8 @@ _F64 = np.dtype(np.float64)
 
 def _in(x, name, size):
     """x as a C-contiguous double[size] array (converted when needed)."""
-    if not (type(x) is np.ndarray and x.dtype is _F64 and x.flags.c_contiguous):
+    if not (type(x) is np.ndarray and x.dtype is _F64 and x.flags.c_contiguous
+            and x.flags.aligned):
         if x is None or isinstance(x, (str, bytes)):
             raise TypeError(f"{name}: expected a double[{size}] array, got {type(x).__name__}")
         try:
@@ -36,6 +37,8 @@ def _in(x, name, size):
             x = np.asarray(a, dtype=_F64, order="C")
         except (ValueError, TypeError) as e:
             raise TypeError(f"{name}: not an array of real numbers ({e})") from None
+        if not x.flags.aligned:  # a view at an odd byte offset: the C library reads aligned doubles
+            x = x.copy()
     if x.shape != (size,):
         raise ValueError(f"{name}: expected a double[{size}] array (shape ({size},)), got shape {x.shape}")
     return x
@@ -44,8 +47,8 @@ def _in(x, name, size):
 def _outarr(x, name, size, sizes=None):
     """(array to return, buffer the C function writes): a new double[size]
     array when x is None; x itself when it is a writeable C-contiguous
-    double array of an accepted size; otherwise a temporary whose values
-    _copy_back puts into x."""
+    aligned double array of an accepted size; otherwise a temporary whose
+    values _copy_back puts into x."""
     if x is None:
         a = np.empty(size)
         return a, a
@@ -56,7 +59,7 @@ def _outarr(x, name, size, sizes=None):
                          f"got shape {x.shape} and dtype {x.dtype}")
     if not x.flags.writeable:
         raise ValueError(f"{name}: the array is read-only")
-    if x.dtype is _F64 and x.flags.c_contiguous and x.size >= size:
+    if x.dtype is _F64 and x.flags.c_contiguous and x.flags.aligned and x.size >= size:
         return x, x
     return x, np.empty(size)
 

@@ -18,6 +18,16 @@ DOC_RTOL = 1e-12
 ULP_TOL = 4  # pw85_spheroid and the compiler may move the last bits
 
 
+def misaligned(x):
+    """A copy of x at an odd byte offset into a bytes buffer (NumPy flags it
+    not aligned; the C library reads aligned doubles)."""
+    buf = bytearray(x.nbytes + 1)
+    v = np.frombuffer(buf, dtype=x.dtype, count=x.size, offset=1).reshape(x.shape)
+    v[...] = x
+    assert not v.flags.aligned
+    return v
+
+
 def within_ulps(x, ref, n=ULP_TOL):
     return abs(x - ref) <= n * np.spacing(abs(ref))
 

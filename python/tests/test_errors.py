@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 import pw85
+from conftest import misaligned
 
 R12 = np.array([0.7, -0.7, 1.1])
 Q1 = pw85.spheroid(10., 0.1, [0., 0., 1.])
@@ -184,3 +185,34 @@ def test_dca_2d_errors():
     for tol, exc in [(-1., ValueError), (np.nan, ValueError), ("x", TypeError), (None, TypeError)]:
         with pytest.raises(exc, match="theta_tol"):
             pw85.dca_ex(R12, Q1, Q2, theta_tol=tol)
+
+
+def test_misaligned_arrays_are_copied():
+    from pw85 import _api
+    import pypw85
+    rng = np.random.default_rng(11)
+    r12 = rng.normal(size=(40, 3))
+    q1 = np.tile(Q1, (40, 1))
+    q2 = np.tile(Q2, (40, 1))
+    for x, last in ((r12, 3), (q1, 6)):
+        a = _api._arr(misaligned(x), "x", last)
+        assert a.flags.aligned and a.flags.c_contiguous and np.array_equal(a, x)
+    assert pypw85._in(misaligned(R12), "r12", 3).flags.aligned
+    bad = [misaligned(x) for x in (r12, q1, q2)]
+    assert np.array_equal(pw85.overlap(*bad), pw85.overlap(r12, q1, q2))
+    for got, ref in zip(pw85.contact_function(*bad), pw85.contact_function(r12, q1, q2)):
+        assert np.array_equal(got, ref)
+    assert np.array_equal(pw85.contact(*bad), pw85.contact(r12, q1, q2))
+    assert np.array_equal(pw85.dca(*bad), pw85.dca(r12, q1, q2))
+    assert pw85.contact_function(*(x[0] for x in bad)) == pw85.contact_function(r12[0], q1[0], q2[0])
+    # Scenes: centres, q and the int64 index pairs.
+    centres = rng.uniform(0, 5, (10, 3))
+    pairs = np.array([[i, j] for i in range(10) for j in range(i + 1, 10)], dtype=np.int64)
+    ref = pw85.scene_contact_function(centres, q1[:10], pairs)
+    got = pw85.scene_contact_function(misaligned(centres), misaligned(q1[:10]), misaligned(pairs))
+    assert all(np.array_equal(g, r) for g, r in zip(got, ref))
+    # pypw85 (pw85 1.0's API), inputs and a misaligned output array.
+    ref = pypw85.contact_function(R12, Q1, Q2)
+    out = misaligned(np.zeros(2))
+    got = pypw85.contact_function(misaligned(R12), misaligned(Q1), misaligned(Q2), out)
+    assert got is out and np.array_equal(out, ref)

@@ -161,3 +161,77 @@ def test_errors():
     assert info.value.status == pw85.Status.ERR_NOT_SPD and info.value.index == 1
     with pytest.raises(pw85.Error, match="non-finite"):
         pw85.ellipsoid_axes([1, 0, 0, np.inf, 0, 1])
+
+
+def test_scalar_last_order():
+    # scalar_first=False takes (x, y, z, w) (SciPy's as_quat(), OVITO):
+    # the same bits as the reordered quaternion, and the surface points of
+    # the body frame, rotated by Hamilton products, lie on the surface.
+    rng = np.random.default_rng(7)
+    n = 200
+    quat = random_quats(rng, n)
+    radii = rng.uniform(0.5, 2, (n, 3))
+    last = np.ascontiguousarray(quat[:, [1, 2, 3, 0]])
+    q = pw85.ellipsoid_quat(radii, last, scalar_first=False)
+    assert np.array_equal(q, pw85.ellipsoid_quat(radii, quat))
+    for e in np.eye(3):
+        x = rotate(quat, radii * e)
+        v = np.einsum("ni,ni->n", x, np.linalg.solve(full(q), x[..., None])[..., 0])
+        assert np.max(np.abs(v - 1)) <= 1e-13
+    # The scalar-last array read as scalar-first is another rotation.
+    assert np.max(np.abs(pw85.ellipsoid_quat(radii, last) - q)) > 0.1
+    with pytest.raises(TypeError, match="scalar_first"):
+        pw85.ellipsoid_quat(radii, quat, scalar_first=1)
+    with pytest.raises(TypeError, match="scalar_first"):
+        pw85.ellipsoid_quat(radii, quat, scalar_first="xyzw")
+
+
+class Rotations:
+    """Stands for scipy.spatial.transform.Rotation: only as_matrix()."""
+
+    def __init__(self, quat):
+        self.quat = quat
+
+    def as_matrix(self):
+        return np.stack([rotate(self.quat, np.broadcast_to(e, self.quat.shape[:-1] + (3,)))
+                         for e in np.eye(3)], axis=-1)
+
+
+def test_rotation_object_duck_typed():
+    # An object with as_matrix() (columns: the images of the body axes,
+    # built here by Hamilton products) is taken as rotation matrices.
+    rng = np.random.default_rng(8)
+    quat = random_quats(rng, 100)
+    radii = rng.uniform(0.5, 2, (100, 3))
+    rot = Rotations(quat).as_matrix()
+    q = pw85.ellipsoid_quat(radii, Rotations(quat))
+    assert np.array_equal(q, pw85.ellipsoid_rotation(radii, rot))
+    ref = np.einsum("nij,nj,nkj->nik", rot, radii ** 2, rot)
+    assert np.max(np.abs(full(q) - ref)) <= 16 * U * 4
+    one = pw85.ellipsoid_quat(radii[0], Rotations(quat[0]))
+    assert np.array_equal(one, q[0])
+    scaled = Rotations(quat[0])
+    scaled.as_matrix = lambda: 2 * np.eye(3)
+    with pytest.raises(pw85.Error, match="not orthonormal"):
+        pw85.ellipsoid_quat(radii[0], scaled)
+
+
+def test_scipy_rotation():
+    transform = pytest.importorskip(
+        "scipy.spatial.transform",
+        reason="SciPy not installed (Debian: python3-scipy): the duck-typed test covers as_matrix()")
+    r = transform.Rotation.random(300, random_state=9)
+    rng = np.random.default_rng(9)
+    radii = rng.uniform(0.5, 2, (300, 3))
+    q = pw85.ellipsoid_quat(radii, r)
+    assert np.array_equal(q, pw85.ellipsoid_rotation(radii, r.as_matrix()))
+    # as_quat() is scalar-last: scalar_first=False gives the same Q within
+    # rounding; the default order would not.
+    q_last = pw85.ellipsoid_quat(radii, r.as_quat(), scalar_first=False)
+    assert np.max(np.abs(q_last - q)) <= 32 * U * 4
+    assert np.max(np.abs(pw85.ellipsoid_quat(radii, r.as_quat()) - q)) > 0.1
+    # Body axis k of the particle is column k of the matrix: r.apply(e_k).
+    for k, e in enumerate(np.eye(3)):
+        x = r.apply(radii[:, k:k + 1] * e)
+        v = np.einsum("ni,ni->n", x, np.linalg.solve(full(q), x[..., None])[..., 0])
+        assert np.max(np.abs(v - 1)) <= 1e-13
