@@ -28,15 +28,22 @@ using pw85::capi::fill_nan;
 
 namespace {
 
-// The pair scaled into (kSafeLo, kSafeHi) for the pw85 1.0 evaluations of
-// f (scale_pair_into_range): f, g and g' (all of the units of
+// Exact power-of-two scaling of a pair for the pw85 1.0 evaluations of f:
+// when max |r_i| or max |Q_ij| lies outside (kSafeLo, kSafeHi), r' = 2^-er r
+// and Q' = 2^-eq Q (common even eq), so that f, g and g' (all of the units of
 // r^T Q^{-1} r) are those of the scaled pair times 2^(2 er - eq); returns
 // that exponent (0: no scaling).
 int scale_pair(pw85::Vec3 &r, pw85::Sym3 &q1, pw85::Sym3 &q2) noexcept {
+  double const rm = pw85::max_abs(r.x, pw85::kDim), m1 = pw85::max_abs(q1.a, pw85::kSym),
+               m2 = pw85::max_abs(q2.a, pw85::kSym), qm = m1 > m2 ? m1 : m2;
+  if (rm > pw85::kSafeLo && rm < pw85::kSafeHi && qm > pw85::kSafeLo && qm < pw85::kSafeHi)
+    return 0;
   int er, eq;
-  return pw85::scale_pair_into_range(r, q1, q2, pw85::kSafeLo, pw85::kSafeHi, er, eq)
-             ? 2 * er - eq
-             : 0;
+  std::frexp(rm, &er);
+  std::frexp(qm, &eq);
+  eq += eq & 1;  // even: the square roots of the Cholesky factor scale exactly
+  pw85::scale_pair(r, q1, q2, -er, -eq, r, q1, q2);
+  return 2 * er - eq;
 }
 
 }  // namespace

@@ -8,9 +8,6 @@
 
 #include <cmath>
 
-#include "common/magnitude.hpp"
-#include "common/sym3.hpp"
-
 namespace pw85 {
 
 // out[i] = x[i] 2^e for i < n (std::ldexp: exact unless the result is
@@ -41,24 +38,6 @@ inline void scale_matrices(Sym const &q1, Sym const &q2, int eq, Sym &q1s, Sym &
   constexpr int kMat = sizeof q1.a / sizeof q1.a[0];
   scale_by_power_of_two(q1.a, q1s.a, kMat, eq);
   scale_by_power_of_two(q2.a, q2s.a, kMat, eq);
-}
-
-// A pair scaled into a safe range: when max |r_i| or max |Q_ij| (both
-// matrices) lies outside (lo, hi), r' = 2^-er r and Q' = 2^-eq Q, er and eq
-// the exponents of those maxima (std::frexp), eq made even so that the
-// square roots of a Cholesky factor scale exactly; returns true then. False
-// (er = eq = 0, the pair unchanged) inside the range.
-inline bool scale_pair_into_range(Vec3 &r, Sym3 &q1, Sym3 &q2, double lo, double hi, int &er,
-                                  int &eq) noexcept {
-  double const rm = max_abs(r.x, kDim), m1 = max_abs(q1.a, kSym), m2 = max_abs(q2.a, kSym),
-               qm = m1 > m2 ? m1 : m2;
-  er = eq = 0;
-  if (rm > lo && rm < hi && qm > lo && qm < hi) return false;
-  std::frexp(rm, &er);
-  std::frexp(qm, &eq);
-  eq += eq & 1;  // even (also for negative eq: two's complement)
-  scale_pair(r, q1, q2, -er, -eq, r, q1, q2);
-  return true;
 }
 
 }  // namespace pw85

@@ -215,10 +215,18 @@ Status contact_geometry(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in,
   // x0 = 2^er x0' (G1), dca = 2^(eq/2) dca' (G4). Done when r or the
   // matrices lie outside (kSafeLo, kSafeHi), where the intermediate s^T Q s
   // ~ |r|^2 / |Q| could overflow or underflow.
-  int er, eq;
+  double const rmax = max_abs(r_in.x, kDim), qm1 = max_abs(q1_in.a, kSym),
+               qm2 = max_abs(q2_in.a, kSym), qmax = qm1 > qm2 ? qm1 : qm2;
+  bool const scale = !(rmax > kSafeLo && rmax < kSafeHi && qmax > kSafeLo && qmax < kSafeHi);
+  int er = 0, eq = 0;
   Vec3 r = r_in;
   Sym3 q1 = q1_in, q2 = q2_in;
-  bool const scale = scale_pair_into_range(r, q1, q2, kSafeLo, kSafeHi, er, eq);
+  if (scale) {
+    std::frexp(rmax, &er);
+    std::frexp(qmax, &eq);
+    eq += eq & 1;  // even (also for negative eq: two's complement)
+    scale_pair(r, q1, q2, -er, -eq, r, q1, q2);
+  }
   Status status = contact_point(r, q1, q2, g);
   if (!(g.lambda >= 0.0 && g.lambda <= 1.0)) return status;
   // In the scaled frame: |r'|, mu' and dca' = |r'| / mu' (G4).
