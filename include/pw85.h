@@ -572,11 +572,12 @@ PW85_API int pw85_contact_pairs(long long m, double const *r12, double const *q1
  * to double. With a box, r12 is the image of c_j - c_i (rounded to double)
  * given by the triclinic wrap of HOOMD's Box::minImage in exact arithmetic
  * (z, then y, then x, each by the nearest integer number of lattice vectors,
- * ties away from zero), each component rounded to double once; it lies in
- * |x| <= Lx/2, |y| <= Ly/2, |z| <= Lz/2. A pair whose wrap needs a count
- * beyond 2^50 lattice vectors along a2 when xy != 0, or along a3 when xz or
- * yz != 0 (or overflows), fails with PW85_ERR_INVALID_ARGUMENT; without tilt
- * any distance is reduced exactly. It is the nearest image whenever the
+ * ties away from zero; within a relative 2^-48 of a tie either count),
+ * each component rounded to double once; it lies in |x| <= Lx/2,
+ * |y| <= Ly/2, |z| <= Lz/2. A pair whose wrap needs a count beyond 2^50
+ * lattice vectors along a2 when xy != 0, or along a3 when xz or yz != 0
+ * (or overflows), fails with PW85_ERR_INVALID_ARGUMENT; without tilt any
+ * distance is reduced exactly. It is the nearest image whenever the
  * nearest image is shorter than min(Lx, Ly, Lz)/2, hence for every pair
  * that overlaps or touches in some image; for longer separations in a
  * tilted box it may be another image (docs/batch.md). To keep that guarantee, a pair whose

@@ -18,38 +18,54 @@ namespace {
 
 constexpr double kMaxCount = 0x1p50;  // largest count computed (box.hpp)
 
-// Whether a - b is exact in floating point (the error term of Knuth's
-// two-sum is zero).
-bool difference_exact(double a, double b) noexcept {
-  double const s = a - b;
+// Knuth's two-sum: s + e = a + b exactly, s = fl(a + b).
+inline void two_sum(double a, double b, double &s, double &e) noexcept {
+  s = a + b;
   double const bb = s - a;
-  return (a - (s - bb)) + (-b - bb) == 0.0;
+  e = (a - (s - bb)) + (b - bb);
 }
 
-// Whether the subtraction v - n L of the wrap, n its rounded count, is
-// exact with |n| <= 1: Sterbenz's lemma applies when L/2 <= |v| <= 2 L, and
-// |v| <= 2 L follows from |n| = 1.
-bool unit_step_exact(double v, double n, double len) noexcept {
-  return std::fabs(n) <= 1.0 && 2.0 * std::fabs(v) >= len;
+// One axis of the wrap: n = round_away(v / len) (v * (1 / len) rounded, as
+// HOOMD does) and h = v - n len, exact when n is 0 or +-1 with
+// L/2 <= |v| (Sterbenz's lemma; |v| <= 2 L follows from |n| = 1). False
+// for a larger count or an inexact step.
+inline bool unit_step(double v, double inv, double len, double &n, double &h) noexcept {
+  n = round_away(v * inv);
+  if (n != 0.0 && !(std::fabs(n) <= 1.0 && 2.0 * std::fabs(v) >= len)) return false;
+  h = v - len * n;
+  return true;
 }
 
 }  // namespace
 
-bool wrap_exact(Box const &b, double const d[3], double nz, double ny, double nx) noexcept {
-  double x = d[0], y = d[1], z = d[2];
-  if (nz != 0.0) {
-    if (!unit_step_exact(z, nz, b.length[2])) return false;
-    if (b.tilted && !(difference_exact(y, b.yz_lz * nz) && difference_exact(x, b.xz_lz * nz)))
-      return false;
+bool wrap_small_counts(Box const &b, double d[3]) noexcept {
+  // The wrap's operations, in HOOMD's order; the rounding error of each
+  // subtraction of a tilt offset kept by a two-sum, so that the result is
+  // the exact image rounded once (the same bits as the plain wrap where the
+  // errors are 0).
+  double nz, z;
+  if (!unit_step(d[2], b.inv_length[2], b.length[2], nz, z)) return false;
+  double ys, ye, xs, xe;
+  two_sum(d[1], -(b.yz_lz * nz), ys, ye);
+  two_sum(d[0], -(b.xz_lz * nz), xs, xe);
+  double ny, yh;
+  if (!unit_step(ys, b.inv_length[1], b.length[1], ny, yh)) return false;
+  double xs2, xe2;
+  two_sum(xs, -(b.xy_ly * ny), xs2, xe2);
+  double nx, xh;
+  if (!unit_step(xs2, b.inv_length[0], b.length[0], nx, xh)) return false;
+  // The exact image: (xh + xe2 + xe, yh + ye, z), each rounded once.
+  double x = xh;
+  if (xe != 0.0 || xe2 != 0.0) {
+    double f, g;
+    two_sum(xe2, xe, f, g);
+    if (g != 0.0) return false;  // three terms: the expansions decide
+    x = xh + f;
   }
-  y -= b.yz_lz * nz;
-  x -= b.xz_lz * nz;
-  if (ny != 0.0) {
-    if (!unit_step_exact(y, ny, b.length[1])) return false;
-    if (b.tilted && !difference_exact(x, b.xy_ly * ny)) return false;
-  }
-  x -= b.xy_ly * ny;
-  return nx == 0.0 || unit_step_exact(x, nx, b.length[0]);
+  d[0] = x;
+  d[1] = ye != 0.0 ? yh + ye : yh;
+  d[2] = z;
+  return true;
 }
 
 namespace {

@@ -11,7 +11,10 @@
 // from d_x / Lx, d -= nx a1; each component of the exact result is rounded
 // to double once. The result lies in the brick |x| <= Lx/2, |y| <= Ly/2,
 // |z| <= Lz/2, a fundamental domain of the lattice, so it is the nearest
-// image whenever the nearest image is shorter than min(Lx, Ly, Lz)/2.
+// image whenever the nearest image is shorter than min(Lx, Ly, Lz)/2. The
+// counts come from rounded quotients where the wrap is done in floating
+// point: where a quotient lies within a relative 2^-48 of a half-integer,
+// the image of either neighbouring count may be returned (both exact).
 //
 // Where the counts are needed (a count along a3 with xz or yz not zero, a
 // count along a2 with xy not zero) they must be at most 2^50 in magnitude,
@@ -83,18 +86,19 @@ inline double round_away(double x) noexcept {
 // point wrap cannot certify.
 Status minimum_image_exact(Box const &b, double d[3]) noexcept;
 
-// Whether HOOMD's wrap of d in floating point, with the counts nz, ny, nx
-// it rounded, performed only exact operations: counts 0 or +-1, each
-// subtraction of a length exact by Sterbenz's lemma, each subtraction of a
-// tilt offset with a zero two-sum error. Out of line: taken only by pairs
-// that may wrap.
-bool wrap_exact(Box const &b, double const d[3], double nz, double ny, double nx) noexcept;
+// The image of d when every count of the wrap is 0 or +-1 and each
+// subtraction of a length is exact (Sterbenz's lemma, checked): HOOMD's
+// operations, plus the rounding errors of the subtractions of the tilt
+// offsets kept by two-sums, each component of the exact image rounded once;
+// d written, true. False (d unchanged) otherwise. Out of line: taken only
+// by pairs that may wrap.
+bool wrap_small_counts(Box const &b, double d[3]) noexcept;
 
 // d (periodic box b, every component finite) replaced by its image
 // (definition at the top of this file); kOk, or kInvalidArgument with d
-// unchanged. The common case takes HOOMD's wrap in floating point, accepted
-// when no count is needed (the pair does not wrap) or wrap_exact certifies
-// it: then it is the exact image. Anything else goes to
+// unchanged. A pair that does not wrap takes HOOMD's wrap in floating
+// point (all its counts are 0, so it leaves d as it is); a pair that may
+// wrap goes to wrap_small_counts, and what that cannot do to
 // minimum_image_exact.
 [[gnu::always_inline]] inline Status minimum_image(Box const &b, double d[3]) noexcept {
   double x = d[0], y = d[1], z = d[2];
@@ -110,9 +114,17 @@ bool wrap_exact(Box const &b, double const d[3], double nz, double ny, double nx
   // A count is 0 exactly when its quotient is below 1/2 in magnitude, so a
   // sum of the |q| (those of round_away, shared) below 1/2 means no wrap; a
   // larger sum, an infinity or a NaN (a subnormal length: 1 / L = inf) goes
-  // to wrap_exact.
-  if (!(std::fabs(qz) + std::fabs(qy) + std::fabs(qx) < 0.5) && !wrap_exact(b, d, nz, ny, nx))
-    return minimum_image_exact(b, d);
+  // to wrap_small_counts. Without tilt, the wrap just computed is exact
+  // when each count is 0, or +-1 with |d_k| >= L_k / 2 (Sterbenz's lemma).
+  if (!(std::fabs(qz) + std::fabs(qy) + std::fabs(qx) < 0.5)) {
+    auto const unit_step_exact = [](double v, double n, double len) noexcept {
+      return n == 0.0 || (std::fabs(n) <= 1.0 && 2.0 * std::fabs(v) >= len);
+    };
+    if (b.tilted || !(unit_step_exact(d[2], nz, b.length[2]) &&
+                      unit_step_exact(d[1], ny, b.length[1]) &&
+                      unit_step_exact(d[0], nx, b.length[0])))
+      return wrap_small_counts(b, d) ? kOk : minimum_image_exact(b, d);
+  }
   d[0] = x;
   d[1] = y;
   d[2] = z;
