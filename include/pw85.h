@@ -486,14 +486,17 @@ PW85_API int pw85_contact(double const r12[PW85_DIM], double const q1[PW85_SYM],
  * changed; ignored without OpenMP. status (may be NULL) receives the status
  * of each pair. Indices and counts are long long (64-bit), so that the
  * header needs no other header and Fortran passes integer(c_long_long).
- * The recommended calls are pw85_overlap_pairs, pw85_contact_function_pairs,
- * pw85_contact_pairs and pw85_scene_* further below; the three *_batch
- * calls keep their signatures and behaviour (ABI). pw85_contact_function_batch
- * runs pw85 1.0's Brent iteration, several times slower than
- * PW85_METHOD_DEFAULT (docs/batch.md). */
+ * The scene and pairs calls further below (pw85_scene_*, pw85_*_pairs) are
+ * the implementation; the three *_batch calls keep their signatures and
+ * behaviour (ABI): pw85_overlap_batch and pw85_contact_batch are one-line
+ * wrappers of pw85_scene_overlap and pw85_scene_contact with box NULL;
+ * pw85_contact_function_batch runs pw85_contact_function (pw85 1.0's Brent
+ * iteration, several times slower than PW85_METHOD_DEFAULT) through the
+ * same scene loop (docs/batch.md). */
 
-/* Overlap verdicts of m pairs: overlap[k] = pw85_overlap() of pair k (1, 0,
- * or a negative status), status[k] = PW85_OK or that negative status.
+/* pw85_scene_overlap(n, centres, q, NULL, m, pairs, overlap, status,
+ * nthreads): overlap verdicts of m pairs, overlap[k] = pw85_overlap() of
+ * pair k (1, 0, or a negative status), status[k] = PW85_OK or that status.
  * Returns PW85_OK when every pair succeeded (m = 0 included), else the status
  * of the first failing pair (lowest k): PW85_ERR_INVALID_ARGUMENT (also for
  * an index < 0 or >= n), PW85_ERR_NOT_SPD or PW85_ERR_INACCURATE, as
@@ -516,7 +519,8 @@ PW85_API int pw85_contact_function_batch(long long n, double const *centres,
                                          long long const *pairs, double *out,
                                          int *status, int nthreads);
 
-/* Contact geometry of m pairs: c[k] = pw85_contact() of pair k, status[k]
+/* pw85_scene_contact(n, centres, q, NULL, m, pairs, c, status, nthreads):
+ * contact geometry of m pairs, c[k] = pw85_contact() of pair k, status[k]
  * its status. Returns PW85_OK when every pair succeeded (m = 0 included),
  * else the status of the first failing pair (lowest k):
  * PW85_ERR_INVALID_ARGUMENT (also for an index < 0 or >= n; that pair's
@@ -564,14 +568,19 @@ PW85_API int pw85_contact_pairs(long long m, double const *r12, double const *q1
  * i at q[6i..6i+5]; pair k is (i, j) = (pairs[2k], pairs[2k+1]), computed
  * with r12 = c_j - c_i. box (may be NULL: no periodicity) is a periodic box
  * in the HOOMD/GSD convention {Lx, Ly, Lz, xy, xz, yz}: lattice vectors
- * (Lx, 0, 0), (xy Ly, Ly, 0), (xz Lz, yz Lz, Lz). With a box, r12 is the
- * image of c_j - c_i given by the triclinic wrap of HOOMD's Box::minImage
+ * (Lx, 0, 0), (xy Ly, Ly, 0), (xz Lz, yz Lz, Lz), the tilt offsets rounded
+ * to double. With a box, r12 is the image of c_j - c_i (rounded to double)
+ * given by the triclinic wrap of HOOMD's Box::minImage in exact arithmetic
  * (z, then y, then x, each by the nearest integer number of lattice vectors,
- * ties away from zero), which lies in |x| <= Lx/2, |y| <= Ly/2,
- * |z| <= Lz/2. It is the nearest image whenever the nearest image is
- * shorter than min(Lx, Ly, Lz)/2, hence for every pair that overlaps or
- * touches in some image; for longer separations in a tilted box it may be
- * another image (docs/batch.md). To keep that guarantee, a pair whose
+ * ties away from zero; within a relative 2^-48 of a tie either count),
+ * each component rounded to double once; it lies in |x| <= Lx/2,
+ * |y| <= Ly/2, |z| <= Lz/2. A pair whose wrap needs a count beyond 2^50
+ * lattice vectors along a2 when xy != 0, or along a3 when xz or yz != 0
+ * (or overflows), fails with PW85_ERR_INVALID_ARGUMENT; without tilt any
+ * distance is reduced exactly. It is the nearest image whenever the
+ * nearest image is shorter than min(Lx, Ly, Lz)/2, hence for every pair
+ * that overlaps or touches in some image; for longer separations in a
+ * tilted box it may be another image (docs/batch.md). To keep that guarantee, a pair whose
  * bounding spheres (radius: square root of the smaller of the trace and the
  * largest Gershgorin row sum of |Q|) have radii summing to more than
  * min(Lx, Ly, Lz)/2 (less a relative 1e-9) fails with
