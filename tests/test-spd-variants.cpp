@@ -3,7 +3,8 @@
  * definiteness"). A fixed adversarial set of matrices -- the nearly
  * singular ones where a floating-point test may go either way: det = 0 to
  * within a few ulps of one entry, rank-deficient products R diag(a^2) R^T
- * with a tiny radius, 2x2 minors at zero to a few ulps, the example of the
+ * with a tiny radius, exactly singular sums of integer outer products, 2x2
+ * minors at zero to a few ulps, the example of the
  * issue that found the CPU-dependent verdicts, copies scaled by 2^+-700 and
  * matrices whose entries span the double range -- each paired with a
  * well-conditioned matrix, is run through every call that validates a
@@ -217,6 +218,23 @@ std::vector<Matrix> adversarial_set() {
       a[3] = x;
       push_ref(set, a);
     }
+  }
+  // Exactly singular: v v^T + w w^T for integer vectors (exact entries,
+  // det = 0, m2 > 0 unless v, w are parallel), and the same plus 1 on one
+  // diagonal entry (det > 0: positive definite, tiny smallest eigenvalue
+  // relative to the largest for long vectors).
+  for (int i = 0; i < 40; ++i) {
+    double v[3], w[3];
+    for (int k = 0; k < 3; ++k) {
+      v[k] = std::floor(2000.0 * g.uniform()) - 1000.0;
+      w[k] = std::floor(2000.0 * g.uniform()) - 1000.0;
+    }
+    double q[6] = {v[0] * v[0] + w[0] * w[0], v[0] * v[1] + w[0] * w[1],
+                   v[0] * v[2] + w[0] * w[2], v[1] * v[1] + w[1] * w[1],
+                   v[1] * v[2] + w[1] * w[2], v[2] * v[2] + w[2] * w[2]};
+    push_ref(set, q);
+    q[5 - 2 * (i % 3) - (i % 3 == 2 ? 1 : 0)] += 1.0;
+    push_ref(set, q);
   }
   // Copies scaled by 2^700 and 2^-700 (exact scalings, same references).
   std::size_t const n0 = set.size();
