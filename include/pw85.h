@@ -644,7 +644,10 @@ typedef struct pw85_derivatives_t {
  * point of pw85_contact() (relative to centre 1). Returns PW85_OK,
  * PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity, or r12 = 0 where mu^2 is
  * not differentiable), PW85_ERR_NOT_SPD (q1 or q2 not positive definite),
- * PW85_ERR_NO_CONVERGENCE (the solve did not converge) or
+ * PW85_ERR_NO_CONVERGENCE (the solve did not converge; where DEFAULT
+ * answers, only when a field is outside the range of double or the
+ * maximiser has min(lambda, 1 - lambda) below about 1e-15, i.e. q1 and q2
+ * of magnitudes about 2^100 or more apart; docs/derivatives.md) or
  * PW85_ERR_INACCURATE (every field written, but the error estimate of mu2
  * exceeds PW85_METHOD_DEFAULT's documented accuracy). On the other errors
  * every field of *d is NaN (when d is not NULL). The last bits may depend on
