@@ -694,7 +694,12 @@ PW85_API int pw85_scene_contact_derivatives(long long n, double const *centres,
  * PW85_ERR_NOT_SPD (q1 or q2 not positive definite; *t is NaN) or
  * PW85_ERR_NO_CONVERGENCE (PW85_CONTACT_TIME_MAX_EVAL evaluations spent, an
  * evaluation failed, or no certified step can advance t: *t is the time up
- * to which mu^2 >= 1 - 2.3e-13 is certified on [0, *t]). */
+ * to which mu^2 >= 1 - 2.3e-13 is certified on [0, *t]; pairs at |r12| >=
+ * 2^997 times the largest semi-axis: NO_CONVERGENCE with *t = 0). Limit of
+ * the certificate: a contact shorter than the spacing of doubles around
+ * t_c (ulp(t_c)) can be stepped over, giving +INFINITY with PW85_OK (unit
+ * spheres head-on at unit speed from |r12| ~ 2^57; docs/contact_time.md,
+ * "Limits"). */
 PW85_API int pw85_contact_time(double const r12[PW85_DIM], double const v12[PW85_DIM],
                                double const q1[PW85_SYM], double const w1[PW85_DIM],
                                double const q2[PW85_SYM], double const w2[PW85_DIM],
