@@ -350,17 +350,32 @@ void test_overlap(void) {
   g_assert_cmpint(both, ==, 0);
 }
 
-void test_overlap_pairs(void) {
+// The set as per-pair arrays: pair k = (offset k % 2, matrix k, the partner).
+struct PairArrays {
+  long long m;
+  std::vector<double> r, q1, q2;
+};
+
+PairArrays pair_arrays() {
   auto const &set = the_set();
   long long const m = static_cast<long long>(set.size());
-  std::vector<double> r(3 * m), q1(6 * m), q2(6 * m);
+  PairArrays p{m, std::vector<double>(3 * m), std::vector<double>(6 * m),
+               std::vector<double>(6 * m)};
   for (long long k = 0; k < m; ++k) {
-    offset_for(set[k], static_cast<int>(k % 2), &r[3 * k]);
+    offset_for(set[k], static_cast<int>(k % 2), &p.r[3 * k]);
     for (int i = 0; i < 6; ++i) {
-      q1[6 * k + i] = set[k].q[i];
-      q2[6 * k + i] = kPartner[i];
+      p.q1[6 * k + i] = set[k].q[i];
+      p.q2[6 * k + i] = kPartner[i];
     }
   }
+  return p;
+}
+
+void test_overlap_pairs(void) {
+  auto const &set = the_set();
+  PairArrays const p = pair_arrays();
+  long long const m = p.m;
+  std::vector<double> const &r = p.r, &q1 = p.q1, &q2 = p.q2;
   std::vector<int> ov(m), st(m);
   pw85_overlap_pairs(m, r.data(), q1.data(), q2.data(), ov.data(), st.data(), 1);
   int bad = 0, differ = 0;
@@ -378,15 +393,9 @@ void test_methods(void) {
                           PW85_METHOD_RATIONAL, PW85_METHOD_ZHENG};
   char const *names[5] = {"DEFAULT", "BRENT", "NEWTON", "RATIONAL", "ZHENG"};
   int bad[5] = {0, 0, 0, 0, 0};
-  long long const m = static_cast<long long>(set.size());
-  std::vector<double> r(3 * m), q1(6 * m), q2(6 * m);
-  for (long long k = 0; k < m; ++k) {
-    offset_for(set[k], static_cast<int>(k % 2), &r[3 * k]);
-    for (int i = 0; i < 6; ++i) {
-      q1[6 * k + i] = set[k].q[i];
-      q2[6 * k + i] = kPartner[i];
-    }
-  }
+  PairArrays p = pair_arrays();
+  long long const m = p.m;
+  std::vector<double> &r = p.r, &q1 = p.q1, &q2 = p.q2;
   for (int t = 0; t < 5; ++t) {
     std::vector<pw85_result> res(m);
     std::vector<int> st(m);
