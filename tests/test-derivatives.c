@@ -612,7 +612,8 @@ static void test_far_pairs(void) {
  * documented limit, docs/derivatives.md), the derivatives are PW85_OK and
  * satisfy Euler's identities of the homogeneity of mu^2 (degree 2 in r12,
  * -1 in (Q1, Q2) together): r12 . d_r12 = 2 mu^2 and
- * sum_k (q1[k] d_q1[k] + q2[k] d_q2[k]) = -mu^2, within 1e-12. */
+ * sum_k (q1[k] d_q1[k] + q2[k] d_q2[k]) = -mu^2, within 1e-12; and the
+ * torques as below. */
 static void test_matrix_ratio(void) {
   double const r[3] = {-0x1.603d97098ec97p-3, 0x1.087c848e777b7p-1, -0x1.0cdcb891621c6p+1};
   double const qa[2][6] = {{1, 0, 0, 1, 0, 1}, {2, 0.3, -0.1, 1, 0.2, 0.5}};
@@ -637,6 +638,20 @@ static void test_matrix_ratio(void) {
       for (int i = 0; i < 6; i++) euler_q += q1[i] * d.d_q1[i] + q2[i] * d.d_q2[i];
       g_assert_cmpfloat(rel_error(euler_r, 2.0 * d.mu2), <=, 1e-12);
       g_assert_cmpfloat(rel_error(-euler_q, d.mu2), <=, 1e-12);
+      /* (E4) with pw85_contact's x0: d_theta1 = -x0 x g, and the rigid
+       * rotation of the whole pair, d_theta1 + d_theta2 + r12 x g = 0, both
+       * within 1e-12 |r12| |g| (x0 is accurate to u max(|x0|, |x0 - r12|)). */
+      pw85_contact_t c;
+      g_assert_cmpint(pw85_contact(r, q1, q2, &c), ==, PW85_OK);
+      double const *g = d.d_r12;
+      double const gn = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+      double const rn = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+      for (int i = 0; i < 3; i++) {
+        int const j = (i + 1) % 3, l = (i + 2) % 3;
+        double const x0g = c.x0[j] * g[l] - c.x0[l] * g[j], rg = r[j] * g[l] - r[l] * g[j];
+        g_assert_cmpfloat(fabs(d.d_theta1[i] + x0g), <=, 1e-12 * rn * gn);
+        g_assert_cmpfloat(fabs(d.d_theta1[i] + d.d_theta2[i] + rg), <=, 1e-12 * rn * gn);
+      }
       checked++;
     }
   g_test_message("%d pairs checked, %d beyond the documented limit", checked, beyond);
