@@ -20,6 +20,18 @@
  *    symmetric positive definite, Q = sum_i a_i^2 v_i v_i^T (semi-axes a_i,
  *    unit axes v_i).
  *
+ * Positive definiteness: every function that takes a matrix q accepts it
+ * when the real symmetric matrix whose entries are the doubles given is
+ * positive definite, and refuses it with PW85_ERR_NOT_SPD otherwise. The
+ * test is exact (Sylvester's criterion: Q00 > 0, Q00 Q11 - Q01^2 > 0,
+ * det Q > 0 for the exact entries; floating-point minors with rigorous
+ * error bounds, exact integer arithmetic where those cannot decide), so
+ * every call and every CPU accept and refuse the same matrices, and none
+ * accepts a matrix that is positive definite only after rounding. A matrix
+ * that is positive definite but singular in double precision is accepted;
+ * the calls that cannot answer for it say so by another status (documented
+ * with each call). docs/api.md, "Positive definiteness".
+ *
  * All functions are reentrant and thread-safe: the library has no global
  * mutable state, never prints, never aborts, and never changes GSL's
  * process-wide error handler.
@@ -44,8 +56,9 @@
  * x86 CPUs that have one, and may differ by an ulp from a CPU without.
  * Building with isa_dispatch=false gives the portable results everywhere.
  * The verdicts of pw85_overlap() and of the overlap batch calls are
- * identical on every CPU (they are exact). The number of threads of a batch call never
- * changes any result.
+ * identical on every CPU (they are exact), and so is the
+ * positive-definiteness decision of every call (below). The number of
+ * threads of a batch call never changes any result.
  */
 #ifndef PW85_H
 #define PW85_H
@@ -164,10 +177,12 @@ PW85_API void pw85_spheroid(double a, double c, double const n[PW85_DIM],
  * axes.
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL pointer, NaN or infinite
  * values), PW85_ERR_NOT_SPD (a radius <= 0), PW85_ERR_NOT_ORTHONORMAL
- * (|axes axes^T - I| > 1e-10 entrywise) or PW85_ERR_RANGE (a radius^2
- * outside [DBL_MIN, DBL_MAX], i.e. a radius outside about
- * [1.5e-154, 1.3e154]: Q not representable). On error q is filled with NaN
- * (when q is not NULL). */
+ * (|axes axes^T - I| > 1e-10 entrywise) or PW85_ERR_RANGE (Q not
+ * representable: a radius^2 outside [DBL_MIN, DBL_MAX], i.e. a radius
+ * outside about [1.5e-154, 1.3e154], or radii so different -- the smallest
+ * below about 1e-8 of the largest, depending on the axes -- that Q rounded
+ * to double is not positive definite). On error q is filled with NaN (when
+ * q is not NULL). */
 PW85_API int pw85_ellipsoid(double const radii[PW85_DIM],
                             double const axes[PW85_DIM * PW85_DIM],
                             double q[PW85_SYM]);
@@ -184,10 +199,11 @@ PW85_API int pw85_ellipsoid(double const radii[PW85_DIM],
  * bits with and without a fused multiply-add (the error-free products are
  * exact either way), unless a product of components underflows.
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL pointer, NaN or infinite
- * values), PW85_ERR_NOT_SPD (a radius <= 0, or the rounded Q not positive
- * definite), PW85_ERR_NOT_ORTHONORMAL (| |quat|^2 - 1 | > 1e-5, quat = 0
- * included) or PW85_ERR_RANGE (a radius^2 outside [DBL_MIN, DBL_MAX]). On
- * error q is filled with NaN (when q is not NULL). */
+ * values), PW85_ERR_NOT_SPD (a radius <= 0), PW85_ERR_NOT_ORTHONORMAL
+ * (| |quat|^2 - 1 | > 1e-5, quat = 0 included) or PW85_ERR_RANGE (a
+ * radius^2 outside [DBL_MIN, DBL_MAX], or the rounded Q not positive
+ * definite, as pw85_ellipsoid). On error q is filled with NaN (when q is
+ * not NULL). */
 PW85_API int pw85_ellipsoid_quat(double const radii[PW85_DIM], double const quat[4],
                                  double q[PW85_SYM]);
 
@@ -221,10 +237,13 @@ PW85_API int pw85_ellipsoid_rotation(double const radii[PW85_DIM],
  * largest radius^2), so radii[k]^2 is within about 10 u ||q|| of the exact
  * eigenvalue (tests/test-orientation.c: measured 6.2 u, 5.6 u; 2.7 u on
  * exact rational Q).
- * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (q or radii NULL, NaN or
- * infinite values), PW85_ERR_NOT_SPD (q not positive definite, or an
- * eigenvalue not > 0 in rounding) or PW85_ERR_NO_CONVERGENCE (Jacobi sweeps
- * exhausted; outputs written). On the other errors radii, rot and quat are
+ * Returns PW85_OK (the outputs are accepted back by pw85_ellipsoid_rotation
+ * and pw85_ellipsoid_quat), PW85_ERR_INVALID_ARGUMENT (q or radii NULL, NaN
+ * or infinite values), PW85_ERR_NOT_SPD (q not positive definite),
+ * PW85_ERR_INACCURATE (q positive definite, but its smallest eigenvalue is
+ * below the accuracy of the sweeps, about 10 u ||q||: an eigenvalue came
+ * out <= 0, or the outputs would not give a positive definite q back) or
+ * PW85_ERR_NO_CONVERGENCE (Jacobi sweeps exhausted; outputs written). On the other errors radii, rot and quat are
  * filled with NaN (those not NULL). */
 PW85_API int pw85_ellipsoid_axes(double const q[PW85_SYM], double radii[PW85_DIM],
                                  double rot[PW85_DIM * PW85_DIM], double quat[4]);
@@ -304,9 +323,12 @@ PW85_API int pw85_contact_function(double const r12[PW85_DIM],
  * physical root polished by a safeguarded Newton iteration).
  * Writes d to *d. q1, q2: 2D storage {Q00, Q01, Q11}.
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity, u = 0),
- * PW85_ERR_NOT_SPD (q1 or q2 not positive definite) or
- * PW85_ERR_NO_CONVERGENCE (polishing did not converge; *d still written).
- * On the other errors *d is NaN (when d is not NULL). */
+ * PW85_ERR_NOT_SPD (q1 or q2 not positive definite),
+ * PW85_ERR_NO_CONVERGENCE (polishing did not converge; *d still written) or
+ * PW85_ERR_INACCURATE (q1 or q2 positive definite but singular in double
+ * precision: condition number above about 1/DBL_EPSILON, or q1 and q2 of
+ * magnitudes more than about 2^1000 apart). On the other errors *d is NaN
+ * (when d is not NULL). */
 PW85_API int pw85_dca_2d(double const u[2], double const q1[3],
                          double const q2[3], double *d);
 
@@ -318,10 +340,10 @@ PW85_API int pw85_dca_2d(double const u[2], double const q1[3],
  * pw85_dca_2d(u) = 1 / sqrt(out[0]) for r12 = u / |u|.
  * Returns PW85_OK, PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity),
  * PW85_ERR_NOT_SPD (q1 or q2 not positive definite),
- * PW85_ERR_NO_CONVERGENCE (estimate still written) or PW85_ERR_RANGE
+ * PW85_ERR_NO_CONVERGENCE (estimate still written), PW85_ERR_RANGE
  * (mu^2 above DBL_MAX or below DBL_MIN, written rounded: +Inf, subnormal or
- * 0). On the first two errors out is filled with NaN (when out is not
- * NULL). */
+ * 0) or PW85_ERR_INACCURATE (as pw85_dca_2d; out is NaN). On the first two
+ * errors out is filled with NaN (when out is not NULL). */
 PW85_API int pw85_contact_function_2d(double const r12[2], double const q1[3],
                                       double const q2[3], double out[2]);
 
@@ -436,8 +458,7 @@ PW85_API int pw85_contact_function_method(double const r12[PW85_DIM],
  * error bounds decide almost every pair, the rest is decided by a Sturm
  * sequence in exact integer arithmetic (no heap allocation). r12 = 0 gives 1.
  * Returns a negative status on error: PW85_ERR_INVALID_ARGUMENT (NULL, NaN,
- * infinity), PW85_ERR_NOT_SPD (q1 or q2 not positive definite, in floating
- * point or, for the pairs reaching the exact stage, exactly) or
+ * infinity), PW85_ERR_NOT_SPD (q1 or q2 not positive definite) or
  * PW85_ERR_INACCURATE (exact stage out of capacity: only for matrices whose
  * entries span more than about 2^300 in magnitude, docs/overlap.md). The
  * verdict is the same on every CPU. */
@@ -632,7 +653,10 @@ typedef struct pw85_derivatives_t {
  * point of pw85_contact() (relative to centre 1). Returns PW85_OK,
  * PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity, or r12 = 0 where mu^2 is
  * not differentiable), PW85_ERR_NOT_SPD (q1 or q2 not positive definite),
- * PW85_ERR_NO_CONVERGENCE (the solve did not converge) or
+ * PW85_ERR_NO_CONVERGENCE (the solve did not converge; where DEFAULT
+ * answers, only when a field is outside the range of double or the
+ * maximiser has min(lambda, 1 - lambda) below about 1e-15, i.e. q1 and q2
+ * of magnitudes about 2^100 or more apart; docs/derivatives.md) or
  * PW85_ERR_INACCURATE (every field written, but the error estimate of mu2
  * exceeds PW85_METHOD_DEFAULT's documented accuracy). On the other errors
  * every field of *d is NaN (when d is not NULL). The last bits may depend on
@@ -679,7 +703,12 @@ PW85_API int pw85_scene_contact_derivatives(long long n, double const *centres,
  * PW85_ERR_NOT_SPD (q1 or q2 not positive definite; *t is NaN) or
  * PW85_ERR_NO_CONVERGENCE (PW85_CONTACT_TIME_MAX_EVAL evaluations spent, an
  * evaluation failed, or no certified step can advance t: *t is the time up
- * to which mu^2 >= 1 - 2.3e-13 is certified on [0, *t]). */
+ * to which mu^2 >= 1 - 2.3e-13 is certified on [0, *t]; pairs at |r12| >=
+ * 2^997 times the largest semi-axis: NO_CONVERGENCE with *t = 0). Limit of
+ * the certificate: a contact shorter than the spacing of doubles around
+ * t_c (ulp(t_c)) can be stepped over, giving +INFINITY with PW85_OK (unit
+ * spheres head-on at unit speed from |r12| ~ 2^57; docs/contact_time.md,
+ * "Limits"). */
 PW85_API int pw85_contact_time(double const r12[PW85_DIM], double const v12[PW85_DIM],
                                double const q1[PW85_SYM], double const w1[PW85_DIM],
                                double const q2[PW85_SYM], double const w2[PW85_DIM],

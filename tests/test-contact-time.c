@@ -425,6 +425,43 @@ static void test_pairs(void) {
   }
 }
 
+/* The documented limits (docs/contact_time.md, "Limits"), with unit spheres
+ * approaching head-on (Q = I; contact for |r12(t)| <= 2, t_c = |r12| - 2 at
+ * unit speed):
+ *  - time resolution: at unit speed from r12 = (2^k, 2^(k-3), 0), t_max =
+ *    2^(k+1), the contact lasts 4 time units; for k <= 52 (ulp(t_c) <= 1)
+ *    it is found, *t within 1e-15 t_max of t_c;
+ *  - far pairs: from r12 = (2^k, 0, 0) at speed 2^k (t_c just below 1,
+ *    t_max = 2): PW85_OK and *t within 1e-15 of t_c for k <= 996;
+ *    k = 997 ... 1000: PW85_ERR_NO_CONVERGENCE after one evaluation,
+ *    *t = 0 (nothing certified). */
+static void test_limits(void) {
+  double const q[6] = {1, 0, 0, 1, 0, 1}, w[3] = {0, 0, 0};
+  for (int k = 2; k <= 52; k++) {
+    double const r[3] = {ldexp(1.0, k), ldexp(1.0, k - 3), 0.0};
+    double const n = hypot(r[0], r[1]);
+    double const v[3] = {-r[0] / n, -r[1] / n, 0.0};
+    double t;
+    g_assert_cmpint(pw85_contact_time(r, v, q, w, q, w, ldexp(1.0, k + 1), &t), ==, PW85_OK);
+    g_assert_cmpfloat(fabs(t - (n - 2.0)), <=, 1e-15 * ldexp(1.0, k + 1));
+  }
+  for (int k = 900; k <= 1000; k++) {
+    double const x = ldexp(1.0, k);
+    double const r[3] = {x, 0, 0}, v[3] = {-x, 0, 0};
+    double t;
+    int ev;
+    int const s = pw85_contact_time_ex(r, v, q, w, q, w, 2.0, &t, &ev);
+    if (k <= 996) {
+      g_assert_cmpint(s, ==, PW85_OK);
+      g_assert_cmpfloat(fabs(t - (x - 2.0) / x), <=, 1e-15);
+    } else {
+      g_assert_cmpint(s, ==, PW85_ERR_NO_CONVERGENCE);
+      g_assert_cmpfloat(t, ==, 0.0);
+      g_assert_cmpint(ev, ==, 1);
+    }
+  }
+}
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   g_test_add_func("/pw85_contact_time/bad-input", test_bad_input);
@@ -437,5 +474,6 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact_time/grazing-band", test_grazing_band);
   g_test_add_func("/pw85_contact_time/scaling", test_scaling);
   g_test_add_func("/pw85_contact_time/pairs", test_pairs);
+  g_test_add_func("/pw85_contact_time/limits", test_limits);
   return g_test_run();
 }

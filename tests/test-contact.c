@@ -356,6 +356,90 @@ static void test_extreme_scale(void) {
                  "with another status", lo, hi, n_other);
 }
 
+/* depth = dca - |r12| against the reference mu^2 of /contact, /near_contact
+ * and /special (correctly rounded; depth_ref = |r| (1 - mu^2) / (mu (1 + mu))
+ * in long double): the error relative to max(dca, |r12|) -- the accuracy
+ * docs/contact_geometry.md states -- is at most 1e-15 (measured 5.9e-16
+ * with AVX-512, 5.0e-16 portable);
+ * relative to dca alone it is not bounded by a constant (far pairs). */
+static void test_depth_accuracy(void) {
+  const char *groups[3] = {"/contact", "/near_contact", "/special"};
+  double worst = 0.0;
+  for (int gi = 0; gi < 3; gi++) {
+    RefPairs *g = refdata_pairs_or_skip(groups[gi]);
+    if (g == NULL) return;
+    for (gsize i = 0; i < g->n; i++) {
+      double const *r = g->r12 + 3 * i;
+      long double const rn = sqrtl((long double)r[0] * r[0] + (long double)r[1] * r[1] +
+                                   (long double)r[2] * r[2]);
+      if (rn == 0.0L) continue;
+      pw85_contact_t c;
+      int const s = pw85_contact(r, g->q1 + 6 * i, g->q2 + 6 * i, &c);
+      if (s != PW85_OK) continue;
+      long double const mu2 = g->mu2[i], mu = sqrtl(mu2);
+      long double const depth = rn * (1.0L - mu2) / (mu * (1.0L + mu));
+      long double const scale = fmaxl(rn / mu, rn);
+      double const e = (double)(fabsl((long double)c.depth - depth) / scale);
+      if (e > worst) worst = e;
+    }
+    refdata_pairs_free(g);
+  }
+  g_test_message("depth: largest error / max(dca, |r12|) = %.3g", worst);
+  g_assert_cmpfloat(worst, <=, 1e-15);
+}
+
+/* The contact point at extreme size ratios: pair (r12, q1, 2^k q2),
+ * k = -1070 ... 156 (docs/stability.md), two r12. With PW85_OK, x0 lies on
+ * both ellipsoids scaled by mu to within 8 u max(|x0|, |x0 - r12|) (the
+ * distance |y^T Q^-1 y - mu^2| / (2 |Q^-1 y|) of y = x0, x0 - r12 from the
+ * surface, in __float128; where y = 0, the size of that scaled ellipsoid,
+ * mu sqrt(3 max |Q_ij|)); and on each relative to its own size,
+ * |y^T (mu^2 Q)^-1 y - 1| <= 1e-9, for k in [-44, 103]
+ * (docs/contact_geometry.md, "Measured accuracy"). */
+static void test_size_ratio(void) {
+  double const rr[2][3] = {{-0x1.603d97098ec97p-3, 0x1.087c848e777b7p-1, -0x1.0cdcb891621c6p+1},
+                           {1.3, -0.4, 0.9}};
+  double const qa[6] = {2, 0.3, -0.1, 1, 0.2, 0.5}, qb[6] = {1, 0.1, -0.2, 2, 0.3, 0.5};
+  int n_ok = 0;
+  for (int p = 0; p < 2; p++)
+    for (int k = -1070; k <= 156; k++) {
+      double const *r = rr[p];
+      double q2[6];
+      for (int i = 0; i < 6; i++) q2[i] = ldexp(qb[i], k);
+      pw85_contact_t c;
+      if (pw85_contact(r, qa, q2, &c) != PW85_OK) continue;
+      n_ok++;
+      quad y[2][3];
+      for (int i = 0; i < 3; i++) {
+        y[0][i] = c.x0[i];
+        y[1][i] = (quad)c.x0[i] - r[i];
+      }
+      double const *qs[2] = {qa, q2};
+      long double const ny = fmaxl(q_norm(y[0]), q_norm(y[1]));
+      for (int e = 0; e < 2; e++) {
+        quad qq[6], g[3];
+        for (int i = 0; i < 6; i++) qq[i] = qs[e][i];
+        q_solve(qq, y[e], g);
+        quad const f = q_dot(y[e], g);
+        double dist;
+        if (q_norm(y[e]) == 0.0L) {
+          double m = 0;
+          for (int i = 0; i < 6; i++) m = fmax(m, fabs(qs[e][i]));
+          dist = sqrt(c.mu2 * 3.0 * m);
+        } else {
+          dist = (double)(q_abs(f - c.mu2) / (2.0L * q_norm(g)));
+        }
+        double const tol = 4.0 * DBL_EPSILON * (double)ny;
+        if (!(dist <= tol))
+          g_test_message("k = %d, pair %d, ellipsoid %d: distance %.3g, max(|x0|, |x0 - r|) %.3g",
+                         k, p, e + 1, dist, (double)ny);
+        g_assert_cmpfloat(dist, <=, tol);
+        if (k >= -44 && k <= 103) g_assert_cmpfloat((double)q_abs(f / c.mu2 - 1), <=, 1e-9);
+      }
+    }
+  g_assert_cmpint(n_ok, >, 1500);
+}
+
 static void test_bad_input(void) {
   double q[6] = {1, 0, 0, 1, 0, 1}, r[3] = {1, 0, 0}, zero[3] = {0, 0, 0};
   double notspd[6] = {1, 2, 0, 1, 0, 1};
@@ -376,5 +460,7 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact/tangency/depth-sign", test_tangency_sign);
   g_test_add_func("/pw85_contact/bad-input", test_bad_input);
   g_test_add_func("/pw85_contact/extreme_scale", test_extreme_scale);
+  g_test_add_func("/pw85_contact/reference/depth_accuracy", test_depth_accuracy);
+  g_test_add_func("/pw85_contact/size_ratio", test_size_ratio);
   return g_test_run();
 }

@@ -575,6 +575,89 @@ static void test_batch_lanes(void) {
   g_rand_free(rng);
 }
 
+/* Far and close pairs: unit spheres at r12 = (2^k, 0, 0), k = -500 ... 512
+ * (mu^2 = 2^(2k - 2) up to 2^1022): PW85_OK with the closed forms of equal
+ * spheres, lambda = 1/2, s = r12: mu^2 = |r12|^2 / 4, d_r12 = r12 / 2,
+ * d_q1 = d_q2 = -(1/8) r12 r12^T, Hessian I / 2, torques 0. */
+static void test_far_pairs(void) {
+  double const q[6] = {1, 0, 0, 1, 0, 1};
+  for (int k = -500; k <= 512; k++) {
+    double const x = ldexp(1.0, k);
+    double const r[3] = {x, 0, 0};
+    pw85_derivatives_t d;
+    int const s = pw85_contact_derivatives(r, q, q, &d);
+    if (s != PW85_OK) g_test_message("k = %d: status %d", k, s);
+    g_assert_cmpint(s, ==, PW85_OK);
+    double const mu2 = ldexp(1.0, 2 * k - 2);
+    g_assert_cmpfloat(rel_error(d.mu2, mu2), <=, 4 * DBL_EPSILON);
+    g_assert_cmpfloat(fabs(d.lambda - 0.5), <=, 4 * DBL_EPSILON);
+    g_assert_cmpfloat(rel_error(d.d_r12[0], 0.5 * x), <=, 4 * DBL_EPSILON);
+    g_assert_cmpfloat(rel_error(d.d_q1[0], -mu2 / 2), <=, 4 * DBL_EPSILON);
+    g_assert_cmpfloat(rel_error(d.d_q2[0], -mu2 / 2), <=, 4 * DBL_EPSILON);
+    for (int i = 0; i < 6; i++)
+      g_assert_cmpfloat(fabs(d.hess_r12[i] - (i == 0 || i == 3 || i == 5 ? 0.5 : 0.0)), <=,
+                        4 * DBL_EPSILON);
+    for (int i = 1; i < 3; i++) g_assert_cmpfloat(fabs(d.d_r12[i]), <=, 4 * DBL_EPSILON * x);
+    for (int i = 0; i < 3; i++) {
+      g_assert_cmpfloat(fabs(d.d_theta1[i]), <=, 4 * DBL_EPSILON * mu2);
+      g_assert_cmpfloat(fabs(d.d_theta2[i]), <=, 4 * DBL_EPSILON * mu2);
+    }
+  }
+}
+
+/* Matrices of very different magnitudes: the pair of docs/stability.md's
+ * ratio range (r12 of the issue that found the failures, q2 = 2^k q for
+ * k = -300 ... 300, q = I and a general matrix). Wherever DEFAULT returns
+ * PW85_OK and its maximiser has min(lambda, 1 - lambda) >= 1e-15 (the
+ * documented limit, docs/derivatives.md), the derivatives are PW85_OK and
+ * satisfy Euler's identities of the homogeneity of mu^2 (degree 2 in r12,
+ * -1 in (Q1, Q2) together): r12 . d_r12 = 2 mu^2 and
+ * sum_k (q1[k] d_q1[k] + q2[k] d_q2[k]) = -mu^2, within 1e-12; and the
+ * torques as below. */
+static void test_matrix_ratio(void) {
+  double const r[3] = {-0x1.603d97098ec97p-3, 0x1.087c848e777b7p-1, -0x1.0cdcb891621c6p+1};
+  double const qa[2][6] = {{1, 0, 0, 1, 0, 1}, {2, 0.3, -0.1, 1, 0.2, 0.5}};
+  int checked = 0, beyond = 0;
+  for (int w = 0; w < 2; w++)
+    for (int k = -300; k <= 300; k++) {
+      double q2[6];
+      for (int i = 0; i < 6; i++) q2[i] = ldexp(qa[w][i], k);
+      double const *q1 = qa[0];
+      pw85_result res;
+      if (pw85_contact_function_method(r, q1, q2, PW85_METHOD_DEFAULT, &res) != PW85_OK) continue;
+      if (fmin(res.lambda, 1.0 - res.lambda) < 1e-15) {
+        beyond++;
+        continue;
+      }
+      pw85_derivatives_t d;
+      int const s = pw85_contact_derivatives(r, q1, q2, &d);
+      if (s != PW85_OK) g_test_message("w = %d, k = %d: status %d, lambda %.17g", w, k, s, res.lambda);
+      g_assert_cmpint(s, ==, PW85_OK);
+      double const euler_r = r[0] * d.d_r12[0] + r[1] * d.d_r12[1] + r[2] * d.d_r12[2];
+      double euler_q = 0.0;
+      for (int i = 0; i < 6; i++) euler_q += q1[i] * d.d_q1[i] + q2[i] * d.d_q2[i];
+      g_assert_cmpfloat(rel_error(euler_r, 2.0 * d.mu2), <=, 1e-12);
+      g_assert_cmpfloat(rel_error(-euler_q, d.mu2), <=, 1e-12);
+      /* (E4) with pw85_contact's x0: d_theta1 = -x0 x g, and the rigid
+       * rotation of the whole pair, d_theta1 + d_theta2 + r12 x g = 0, both
+       * within 1e-12 |r12| |g| (x0 is accurate to u max(|x0|, |x0 - r12|)). */
+      pw85_contact_t c;
+      g_assert_cmpint(pw85_contact(r, q1, q2, &c), ==, PW85_OK);
+      double const *g = d.d_r12;
+      double const gn = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+      double const rn = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+      for (int i = 0; i < 3; i++) {
+        int const j = (i + 1) % 3, l = (i + 2) % 3;
+        double const x0g = c.x0[j] * g[l] - c.x0[l] * g[j], rg = r[j] * g[l] - r[l] * g[j];
+        g_assert_cmpfloat(fabs(d.d_theta1[i] + x0g), <=, 1e-12 * rn * gn);
+        g_assert_cmpfloat(fabs(d.d_theta1[i] + d.d_theta2[i] + rg), <=, 1e-12 * rn * gn);
+      }
+      checked++;
+    }
+  g_test_message("%d pairs checked, %d beyond the documented limit", checked, beyond);
+  g_assert_cmpint(checked, >, 350);
+}
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   g_test_add_func("/pw85_contact_derivatives/formulas-finite-differences", test_formulas_fd);
@@ -582,6 +665,8 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact_derivatives/reference/near_contact", test_near_contact);
   g_test_add_func("/pw85_contact_derivatives/spheres", test_spheres);
   g_test_add_func("/pw85_contact_derivatives/scaling", test_scaling);
+  g_test_add_func("/pw85_contact_derivatives/far_pairs", test_far_pairs);
+  g_test_add_func("/pw85_contact_derivatives/matrix_ratio", test_matrix_ratio);
   g_test_add_func("/pw85_contact_derivatives/bad-input", test_bad_input);
   g_test_add_func("/pw85_contact_derivatives/batch/forms", test_batch);
   g_test_add_func("/pw85_contact_derivatives/batch/lanes", test_batch_lanes);

@@ -464,6 +464,84 @@ static void test_round_trip(void) {
   g_rand_free(rng);
 }
 
+static void assert_all_nan(const double *x, int n);
+
+/* Nearly singular matrices (eigenvalue ratios 1 ... 1e-20, random axes,
+ * entries rounded): whenever pw85_ellipsoid_axes returns PW85_OK, its radii,
+ * rot and quat are accepted back by pw85_ellipsoid_rotation and
+ * pw85_ellipsoid_quat (include/pw85.h); otherwise the status is
+ * PW85_ERR_INACCURATE (q positive definite, eigenvalue below the sweeps'
+ * accuracy) or PW85_ERR_NOT_SPD. Both OK and INACCURATE must occur. */
+static void test_axes_accepted_back(void) {
+  GRand *rng = g_rand_new_with_seed(55);
+  int ok = 0, inaccurate = 0, refused = 0;
+  for (int n = 0; n < 20000; n++) {
+    double axes[9], q[6], radii[3], rot[9], quat[4], q2[6], q3[6];
+    random_axes(rng, axes);
+    double const r[3] = {1.0, g_rand_double_range(rng, 0.1, 1.0),
+                         pow(10.0, g_rand_double_range(rng, -10.0, 0.0))};
+    if (pw85_ellipsoid(r, axes, q) != PW85_OK) continue;
+    int const s = pw85_ellipsoid_axes(q, radii, rot, quat);
+    if (s == PW85_OK) {
+      ok++;
+      g_assert_cmpint(pw85_ellipsoid_rotation(radii, rot, q2), ==, PW85_OK);
+      g_assert_cmpint(pw85_ellipsoid_quat(radii, quat, q3), ==, PW85_OK);
+    } else if (s == PW85_ERR_INACCURATE) {
+      inaccurate++;
+      assert_all_nan(radii, 3);
+    } else {
+      g_assert_cmpint(s, ==, PW85_ERR_NOT_SPD);
+      refused++;
+    }
+  }
+  g_test_message("%d PW85_OK, %d PW85_ERR_INACCURATE, %d PW85_ERR_NOT_SPD", ok, inaccurate,
+                 refused);
+  g_assert_cmpint(ok, >, 10000);
+  g_assert_cmpint(inaccurate, >, 0);
+  g_rand_free(rng);
+}
+
+/* The constructors' statuses as include/pw85.h states them: PW85_ERR_NOT_SPD
+ * only for a radius <= 0. Radii 2^500, 2^-500, 1 with quat = 1: the exact
+ * diagonal, as pw85_ellipsoid_rotation with R = I gives it. The positive
+ * radii {0x1.9c77c2b8fa4bcp-106, 0x1.367e751f48531p+0, 0x1.5b45212ad5b4cp+4}
+ * with random axes: PW85_OK (q then accepted by every call) or
+ * PW85_ERR_RANGE (q rounded to double not positive definite), never
+ * PW85_ERR_NOT_SPD. */
+static void test_constructor_statuses(void) {
+  double const wide[3] = {0x1p500, 0x1p-500, 1.0}, one[4] = {1, 0, 0, 0};
+  double const ident[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  double q[6], q2[6];
+  g_assert_cmpint(pw85_ellipsoid_quat(wide, one, q), ==, PW85_OK);
+  g_assert_cmpint(pw85_ellipsoid_rotation(wide, ident, q2), ==, PW85_OK);
+  double const diag[6] = {0x1p1000, 0, 0, 0x1p-1000, 0, 1};
+  for (int i = 0; i < 6; i++) {
+    g_assert_cmpfloat(q[i], ==, diag[i]);
+    g_assert_cmpfloat(q2[i], ==, diag[i]);
+  }
+  double const tiny[3] = {0x1.9c77c2b8fa4bcp-106, 0x1.367e751f48531p+0, 0x1.5b45212ad5b4cp+4};
+  GRand *rng = g_rand_new_with_seed(7);
+  int ok = 0, range = 0;
+  double const r12[3] = {30.0, 0.0, 0.0};
+  for (int n = 0; n < 2000; n++) {
+    double axes[9], quat[4];
+    random_axes(rng, axes);
+    random_quat(rng, 0.0, quat);
+    int const s1 = pw85_ellipsoid(tiny, axes, q);
+    int const s2 = pw85_ellipsoid_quat(tiny, quat, q2);
+    g_assert_true(s1 == PW85_OK || s1 == PW85_ERR_RANGE);
+    g_assert_true(s2 == PW85_OK || s2 == PW85_ERR_RANGE);
+    if (s1 == PW85_OK) g_assert_cmpint(pw85_overlap(r12, q, q), >=, 0);
+    if (s2 == PW85_OK) g_assert_cmpint(pw85_overlap(r12, q2, q2), >=, 0);
+    ok += (s1 == PW85_OK) + (s2 == PW85_OK);
+    range += (s1 == PW85_ERR_RANGE) + (s2 == PW85_ERR_RANGE);
+  }
+  g_test_message("radii of ratio 2^-110: %d PW85_OK, %d PW85_ERR_RANGE", ok, range);
+  g_assert_cmpint(range, >, 0);
+  g_assert_cmpint(pw85_ellipsoid(tiny, ident, q), ==, PW85_OK);
+  g_rand_free(rng);
+}
+
 static void assert_all_nan(const double *x, int n) {
   for (int i = 0; i < n; i++) g_assert_true(isnan(x[i]));
 }
@@ -545,6 +623,8 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_ellipsoid_axes/rational", test_axes_rational);
   g_test_add_func("/pw85_ellipsoid_axes/repeated", test_axes_repeated);
   g_test_add_func("/pw85_ellipsoid_axes/round_trip", test_round_trip);
+  g_test_add_func("/pw85_ellipsoid_axes/accepted_back", test_axes_accepted_back);
+  g_test_add_func("/pw85_ellipsoid/statuses", test_constructor_statuses);
   g_test_add_func("/pw85_ellipsoid_axes/bad_input", test_bad_input);
   return g_test_run();
 }

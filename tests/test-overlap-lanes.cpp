@@ -15,7 +15,13 @@
  * offset 0 ... W - 1 (so that each pair visits every lane, next to other
  * neighbours): every decided lane (verdict 0 or 1) equals pw85_overlap's
  * verdict, a bad pair is never decided, each pair gets the same verdict in
- * every lane position, and at least 95 % of the good pairs are decided. */
+ * every lane position, and at least 95 % of the good pairs are decided.
+ *
+ * The rows of the reference groups /contact, /near_contact and /special
+ * (mu^2 from exact rational arithmetic), each in every lane position of
+ * both widths: every decided lane has the reference verdict (the
+ * near-tangent and special pairs are where a wrong rounding margin of a
+ * lane certificate shows). */
 #include <cmath>
 #include <vector>
 
@@ -24,6 +30,9 @@
 #include "overlap/overlap.hpp"
 #include "pw85.h"
 #include "../bench/bench_common.hpp"
+extern "C" {
+#include "refdata.h"
+}
 
 namespace {
 
@@ -119,6 +128,47 @@ void test_class(gconstpointer data) {
   check_width<pw85::kOverlapLanesV4>(p);
 }
 
+template <int W>
+void check_reference_width(RefPairs const *g, int &wrong, int &decided) {
+  long long const n = static_cast<long long>(g->n);
+  for (int off = 0; off < W; ++off)
+    for (long long k0 = -off; k0 < n; k0 += W) {
+      double const *rp[W], *q1p[W], *q2p[W];
+      for (int l = 0; l < W; ++l) {
+        long long const k = ((k0 + l) % n + n) % n;  // wrap around: every row in every lane
+        rp[l] = g->r12 + 3 * k;
+        q1p[l] = g->q1 + 6 * k;
+        q2p[l] = g->q2 + 6 * k;
+      }
+      int v[W];
+      pw85::overlap_lanes<W>(rp, q1p, q2p, v);
+      for (int l = 0; l < W; ++l) {
+        long long const k = ((k0 + l) % n + n) % n;
+        double const mu2 = g->mu2[k];
+        if (v[l] < 0 || mu2 == 1.0) continue;
+        decided++;
+        if (v[l] != (mu2 < 1.0 ? 1 : 0)) {
+          wrong++;
+          g_test_message("%s row %lld, width %d, lane %d: verdict %d, reference mu2 %.17g",
+                         g->group, k, W, l, v[l], mu2);
+        }
+      }
+    }
+}
+
+void test_reference(gconstpointer data) {
+  RefPairs *g = refdata_pairs_or_skip(static_cast<char const *>(data));
+  if (g == nullptr) return;
+  int wrong = 0, decided = 0;
+  check_reference_width<pw85::kOverlapLanes>(g, wrong, decided);
+  check_reference_width<pw85::kOverlapLanesV4>(g, wrong, decided);
+  g_test_message("%s: %llu rows, %d lane verdicts, %d wrong", g->group,
+                 static_cast<unsigned long long>(g->n), decided, wrong);
+  g_assert_cmpint(wrong, ==, 0);
+  g_assert_cmpint(decided, >, 0);
+  refdata_pairs_free(g);
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
@@ -130,6 +180,12 @@ int main(int argc, char **argv) {
     char path[64];
     g_snprintf(path, sizeof path, "/overlap_lanes/class-%d", c);
     g_test_add_data_func(path, &classes[c], test_class);
+  }
+  static char const *const groups[3] = {"/contact", "/near_contact", "/special"};
+  for (char const *gname : groups) {
+    char path[64];
+    g_snprintf(path, sizeof path, "/overlap_lanes/reference%s", gname);
+    g_test_add_data_func(path, gname, test_reference);
   }
   return g_test_run();
 }

@@ -8,6 +8,7 @@
 #include "contact/contact.hpp"
 #include "dca/dca.hpp"
 #include "common/magnitude.hpp"
+#include "common/spd.hpp"
 #include "common/status.hpp"
 #include "common/sym2.hpp"
 #include "common/sym3.hpp"
@@ -38,23 +39,12 @@ bool normalise(double const *u, double *out) noexcept {
   return true;
 }
 
-// Positive definiteness of 2^-e q, e the even exponent at or above that of
-// max |q_ij| (exact): det = q00 q11 - q01^2 neither underflows nor
-// overflows (1e-300 I is accepted).
-bool spd_scaled_2d(double const *q) noexcept {
-  int e = pw85::max_exponent(q, 3);
-  e += e & 1;
-  pw85::Sym2 s;
-  pw85::scale_by_power_of_two(q, s.a, 3, -e);
-  return pw85::is_positive_definite(s);
-}
-
 // A pair of ellipses: r finite, q1 and q2 finite and positive definite.
 pw85::Status validate_pair_2d(double const *r, double const *q1, double const *q2) noexcept {
   if (r == nullptr || q1 == nullptr || q2 == nullptr) return pw85::kInvalidArgument;
   if (!pw85::all_finite(r, 2) || !pw85::all_finite(q1, 3) || !pw85::all_finite(q2, 3))
     return pw85::kInvalidArgument;
-  if (!spd_scaled_2d(q1) || !spd_scaled_2d(q2)) return pw85::kNotSpd;
+  if (!pw85::positive_definite_2d(q1) || !pw85::positive_definite_2d(q2)) return pw85::kNotSpd;
   return pw85::kOk;
 }
 

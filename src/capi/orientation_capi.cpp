@@ -52,7 +52,7 @@ int pw85_ellipsoid_axes(double const q[PW85_SYM], double radii[PW85_DIM],
   };
   if (q == nullptr || radii == nullptr || !pw85::all_finite(q, PW85_SYM))
     return fail(PW85_ERR_INVALID_ARGUMENT);
-  if (!pw85::capi::spd_scaled(q)) return fail(PW85_ERR_NOT_SPD);
+  if (!pw85::positive_definite(q)) return fail(PW85_ERR_NOT_SPD);
   pw85::Sym3 const s = pw85::load_sym3(q);
   pw85::Vec3 r;
   double rt[9], qt[4];

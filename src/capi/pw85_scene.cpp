@@ -39,7 +39,7 @@ void fill_nan_contact(pw85_contact_t *c) noexcept {
 // Kept out of line so that the screening pass compiles without spills.
 __attribute__((noinline)) int overlap_general(double const *r12, double const *q1,
                                               double const *q2) noexcept {
-  int const status = pw85::capi::validate_pair_ldl(r12, q1, q2);
+  int const status = pw85::capi::validate_pair(r12, q1, q2);
   if (status != PW85_OK) return status;
   int verdict = -1;
   int const s = pw85::overlap(pw85::load_vec3(r12), pw85::load_sym3(q1),

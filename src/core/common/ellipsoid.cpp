@@ -5,6 +5,7 @@
 #include "common/fp.hpp"
 #include "common/magnitude.hpp"
 #include "common/scaling.hpp"
+#include "common/spd.hpp"
 
 namespace pw85 {
 
@@ -62,7 +63,10 @@ Status ellipsoid(Vec3 const &radii, double const axes[9], double tol, Sym3 &q) n
     if (!(a2 >= kMinNormal && a2 <= kMaxDouble)) return kRange;
   }
   if (!all_finite(q.a, kSym)) return kRange;
-  if (!is_positive_definite(q)) return kNotSpd;
+  // Radii so different that Q rounded to double is not positive definite
+  // (a radius below about 1e-8 of the largest, depending on the axes): not
+  // representable either.
+  if (!positive_definite(q.a)) return kRange;
   return kOk;
 }
 

@@ -3,10 +3,12 @@
 #include <cmath>
 
 #include "arith/dd.hpp"
+#include "common/ellipsoid.hpp"
 #include "common/fp.hpp"
 #include "common/isa.hpp"
 #include "common/magnitude.hpp"
 #include "common/scaling.hpp"
+#include "common/spd.hpp"
 
 namespace pw85 {
 
@@ -33,6 +35,22 @@ PW85_ALWAYS_INLINE DD twice(DD a) noexcept { return DD{2.0 * a.hi, 2.0 * a.lo}; 
 // within u |Q_ij| + a few u² max_k a_k² of the exact Q of quat / |quat|.
 // F: fused multiply-add in the error-free products (common/isa.hpp); both
 // are exact, so F changes no bit unless a product underflows.
+// Q of radii and quat / |quat| (|quat|^2 = n2) through the rotation matrix
+// in double and ellipsoid(): for radii too different for the scaled
+// double-double frame of quat_body.
+Status quat_by_rotation(Vec3 const &radii, double const quat[4], double n2,
+                        Sym3 &q) noexcept {
+  double const w = quat[0], x = quat[1], y = quat[2], z = quat[3];
+  double const s = 1.0 / n2;
+  // Row k of axes = column k of R (O1).
+  double const axes[9] = {(w * w + x * x - y * y - z * z) * s, 2 * (x * y + w * z) * s,
+                          2 * (x * z - w * y) * s, 2 * (x * y - w * z) * s,
+                          (w * w - x * x + y * y - z * z) * s, 2 * (y * z + w * x) * s,
+                          2 * (x * z + w * y) * s, 2 * (y * z - w * x) * s,
+                          (w * w - x * x - y * y + z * z) * s};
+  return ellipsoid(radii, axes, kAxesTol, q);
+}
+
 template <bool F>
 PW85_ALWAYS_INLINE Status quat_body(Vec3 const &radii, double const quat[4], Sym3 &q) noexcept {
   for (int k = 0; k < kDim; ++k)
@@ -58,6 +76,12 @@ PW85_ALWAYS_INLINE Status quat_body(Vec3 const &radii, double const quat[4], Sym
   scale_by_power_of_two(radii.x, scaled_radii.x, kDim, -e);
   DD a2[3];
   for (int k = 0; k < kDim; ++k) a2[k] = sq<F>(scaled_radii[k]);
+  // A radius^2 below 2^-900 of the largest underflows in the double-double
+  // sums of the scaled frame: then the rotation matrix of quat in double,
+  // and the sums of ellipsoid() (ellipsoid.cpp; radii 2^500, 2^-500, 1 with
+  // quat = 1 give the exact diagonal).
+  for (int k = 0; k < kDim; ++k)
+    if (a2[k].hi < 0x1p-900) return quat_by_rotation(radii, quat, n2.hi, q);
   // Median of the three a_k² (by their leading parts; ties pick any).
   int const lo = a2[0].hi <= a2[1].hi ? 0 : 1, hi = 1 - lo;
   int const med = a2[2].hi <= a2[lo].hi ? lo : (a2[2].hi >= a2[hi].hi ? hi : 2);
@@ -80,8 +104,12 @@ PW85_ALWAYS_INLINE Status quat_body(Vec3 const &radii, double const quat[4], Sym
       scaled[idx] = dd::to_double(acc);
     }
   }
-  if (!is_positive_definite(scaled)) return kNotSpd;
-  scale_by_power_of_two(scaled.a, q.a, kSym, 2 * e);
+  Sym3 out;
+  scale_by_power_of_two(scaled.a, out.a, kSym, 2 * e);
+  // Radii so different that Q rounded to double is not positive definite:
+  // not representable (kRange, as ellipsoid() in ellipsoid.cpp).
+  if (!positive_definite(out.a)) return kRange;
+  q = out;
   return kOk;
 }
 
@@ -226,7 +254,7 @@ Status ellipsoid_axes(Sym3 const &q, Vec3 &radii, double rot[9], double quat[4])
   double r[3][3];
   for (int k = 0; k < kDim; ++k) {
     double const lam = a[ord[k]][ord[k]];
-    if (!(lam > 0.0)) status = kNotSpd;
+    if (!(lam > 0.0)) return kInaccurate;  // below the accuracy of the sweeps
     radii[k] = std::ldexp(std::sqrt(lam), e / 2);
     for (int i = 0; i < kDim; ++i) r[i][k] = v[i][ord[k]];
   }
@@ -242,10 +270,22 @@ Status ellipsoid_axes(Sym3 const &q, Vec3 &radii, double rot[9], double quat[4])
                      r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
   if (det < 0.0)
     for (int i = 0; i < kDim; ++i) r[i][2] = -r[i][2];
+  double qt[4];
+  quaternion_of(r, qt);
+  // The outputs must give a q back through both constructors (their checks:
+  // orthonormal axes, radii^2 in range, the rebuilt Q positive definite);
+  // a smallest eigenvalue near the accuracy of the sweeps may not.
+  double axes[9];
+  for (int i = 0; i < kDim; ++i)
+    for (int j = 0; j < kDim; ++j) axes[3 * j + i] = r[i][j];
+  Sym3 back;
+  if (ellipsoid(radii, axes, kAxesTol, back) != kOk || ellipsoid_quat(radii, qt, back) != kOk)
+    return kInaccurate;
   if (rot != nullptr)
     for (int i = 0; i < kDim; ++i)
       for (int j = 0; j < kDim; ++j) rot[3 * i + j] = r[i][j];
-  if (quat != nullptr) quaternion_of(r, quat);
+  if (quat != nullptr)
+    for (int i = 0; i < 4; ++i) quat[i] = qt[i];
   return status;
 }
 

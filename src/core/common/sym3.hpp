@@ -161,9 +161,4 @@ inline bool all_finite(double const *p, int n) noexcept {
   return true;
 }
 
-inline bool is_positive_definite(Sym3 const &a) noexcept {
-  Sym3 l;
-  return cholesky(a, l);
-}
-
 }  // namespace pw85

@@ -73,7 +73,7 @@ Status contact_function_2d(Vec2 const &r_in, Sym2 const &q1_in, Sym2 const &q2_i
   Vec2 s1, s2;
   if (!solve(q1, r, s1) || !solve(q2, r, s2)) {
     mu2 = lambda = std::nan("");
-    return kNotSpd;
+    return kInaccurate;  // singular in rounding (dca.hpp)
   }
   double const rho1 = 1.0 / std::sqrt(dot(r, s1)), rho2 = 1.0 / std::sqrt(dot(r, s2));
   double lo = 0.0, hi = 1.0;

@@ -248,7 +248,7 @@ Status contact_method(int method, Vec3 const &r_in, Sym3 const &q1_in, Sym3 cons
 namespace {
 
 // Checks in the order of the general path: finite values (kInvalidArgument),
-// then positive definiteness by L D L^T pivots (kNotSpd), then the method.
+// then positive definiteness (kNotSpd; common/spd.hpp), then the method.
 template <bool kV4>
 PW85_ALWAYS_INLINE Status entry_body(double const *r12, double const *q1, double const *q2,
                                      int method, MethodResult &res) noexcept {
@@ -262,7 +262,7 @@ PW85_ALWAYS_INLINE Status entry_body(double const *r12, double const *q1, double
   }
   if (!all_finite(r12, kDim) || !all_finite(q1, kSym) || !all_finite(q2, kSym))
     return kInvalidArgument;
-  if (!ldl_positive_scaled(q1) || !ldl_positive_scaled(q2)) return kNotSpd;
+  if (!positive_definite(q1) || !positive_definite(q2)) return kNotSpd;
   return contact_method(method, load_vec3(r12), load_sym3(q1), load_sym3(q2), res);
 }
 

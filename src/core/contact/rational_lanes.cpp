@@ -53,10 +53,11 @@ PW85_V4_INLINE __mmask8 to_bits(M8 m) noexcept {
 // in each lane: max |r_i| and max |Q_ij| of each matrix strictly inside
 // (kSafeLo, kSafeHi), written as "every |x| < kSafeHi and some |x| >
 // kSafeLo" (the same for finite values; a NaN or an infinite value fails
-// both forms), and the L D L^T pivots of ldl_pivots_positive, with its IEEE
-// operations. Against screen_contact_pair lane by lane: 7 % less time per
-// pair in classes 0-2, 2.5 % in class 3 (pw85_contact_function_pairs on
-// bench_batch's pairs, runs alternating the two builds).
+// both forms), and the positive-definiteness certificate of spd.hpp
+// (certain_spd), with its operations. Against screen_contact_pair lane by
+// lane: 7 % less time per pair in classes 0-2, 2.5 % in class 3
+// (pw85_contact_function_pairs on bench_batch's pairs, runs alternating the
+// two builds).
 PW85_V4_INLINE M8 screen_lanes(Vec3L<W> const &r, SymL<W> const &q1,
                                SymL<W> const &q2) noexcept {
   M8 in = (vabs(r[0]) < kSafeHi) & (vabs(r[1]) < kSafeHi) & (vabs(r[2]) < kSafeHi) &
@@ -70,12 +71,9 @@ PW85_V4_INLINE M8 screen_lanes(Vec3L<W> const &r, SymL<W> const &q1,
       below &= vabs(x[i]) < kSafeHi;
       above |= vabs(x[i]) > kSafeLo;
     }
-    V8 const i0 = 1.0 / x[0];
-    V8 const l1 = x[1] * i0, l2 = x[2] * i0;
-    V8 const d1 = x[3] - l1 * x[1];
-    V8 const e = x[4] - l2 * x[1];
-    V8 const d2 = x[5] - l2 * x[2] - (e / d1) * e;
-    in &= below & above & (x[0] > 0.0) & (d1 > 0.0) & (d2 > 0.0) & (d2 <= kMaxDouble);
+    V8 d0, d1, d2;
+    spd_shifted_pivots(x[0], x[1], x[2], x[3], x[4], x[5], d0, d1, d2);
+    in &= below & above & (d0 > 0.0) & (d1 > 0.0) & (d2 > 0.0) & (d2 <= kMaxDouble);
   }
   return in;
 }

@@ -36,14 +36,18 @@ struct Dca2dResult {
 };
 
 // 2D DCA of the ellipses {m : m^T Q^{-1} m <= 1}; u is a unit vector.
-// Returns kOk, or kNoConvergence if the polishing did not converge (the
-// estimate is still written).
+// Returns kOk, kNoConvergence if the polishing did not converge (the
+// estimate is still written), or kInaccurate (nothing written) when q1 or
+// q2, positive definite, is singular in rounding after the exact common
+// rescaling: condition number above about 1/u, or magnitudes of q1 and q2
+// more than about 2^1000 apart.
 Status dca_2d(Vec2 const &u, Sym2 const &q1, Sym2 const &q2, Dca2dResult &res) noexcept;
 
 // 2D contact function, out mu2 = max over [0, 1] of
 // f(lambda) = lambda (1 - lambda) r^T ((1 - lambda) Q1 + lambda Q2)^{-1} r,
 // by safeguarded Newton iterations on f' (f is concave). r = 0 gives mu2 = 0,
-// lambda = 1/2. Returns kOk or kNoConvergence (estimate still written).
+// lambda = 1/2. Returns kOk, kNoConvergence (estimate still written) or
+// kInaccurate (mu2, lambda NaN) as dca_2d.
 Status contact_function_2d(Vec2 const &r, Sym2 const &q1, Sym2 const &q2, double &mu2,
                            double &lambda, int &iterations) noexcept;
 

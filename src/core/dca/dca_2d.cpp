@@ -186,7 +186,7 @@ Status dca_2d(Vec2 const &u, Sym2 const &q1_in, Sym2 const &q2_in,
   bool const swapped = e2d.big * e1.small < e1.big * e2d.small;
   Sym2 const &qo = swapped ? q1 : q2;   // the other one; the chosen one becomes the circle
   Eigen2 const &ec = swapped ? e2d : e1;
-  if (!(ec.small > 0.0)) return kNotSpd;
+  if (!(ec.small > 0.0)) return kInaccurate;  // singular in rounding (dca.hpp)
 
   // (D1): columns of R are (c, s) and (-s, c); D = diag(sqrt(big), sqrt(small)).
   double const ia = 1.0 / std::sqrt(ec.big), ib = 1.0 / std::sqrt(ec.small);
@@ -202,7 +202,7 @@ Status dca_2d(Vec2 const &u, Sym2 const &q1_in, Sym2 const &q2_in,
   Vec2 const w0{{(c * u[0] + s * u[1]) * ia, (-s * u[0] + c * u[1]) * ib}};
   Eigen2 const ep = eigen(qp);
   double const qa = ep.big, qb = ep.small;
-  if (!(qb > 0.0)) return kNotSpd;
+  if (!(qb > 0.0)) return kInaccurate;
   Vec2 const w{{ep.c * w0[0] + ep.s * w0[1], -ep.s * w0[0] + ep.c * w0[1]}};
   double const wnorm2 = w[0] * w[0] + w[1] * w[1];
   Phi phi;

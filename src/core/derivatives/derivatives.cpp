@@ -334,8 +334,8 @@ PW85_TARGET_V4 Status derivatives_v4(Status status, MethodResult const &res, Vec
 #endif
 
 // The derivatives from DEFAULT's solution, for this CPU.
-inline Status derivatives_dispatch(Status status, MethodResult const &res, Vec3 const &r,
-                                   Sym3 const &q1, Sym3 const &q2, Derivatives &d) noexcept {
+inline Status derivatives_variant(Status status, MethodResult const &res, Vec3 const &r,
+                                  Sym3 const &q1, Sym3 const &q2, Derivatives &d) noexcept {
 #if PW85_ISA_LEVELS
   if (isa::has_v4()) return derivatives_v4(status, res, r, q1, q2, d);
 #endif
@@ -343,6 +343,47 @@ inline Status derivatives_dispatch(Status status, MethodResult const &res, Vec3 
   if (isa::has_fma()) return derivatives_fma(status, res, r, q1, q2, d);
 #endif
   return derivatives_from<isa::kStaticFma>(status, res, r, q1, q2, d);
+}
+
+// derivatives_variant; with the maximiser lambda above 1 - 2^-10, or
+// where it gives up with lambda > 1/2, for the swapped pair (-r, Q2, Q1)
+// instead, whose maximiser 1 - lambda (exact) is near 0, where a double
+// resolves it relative to itself (near 1, 1 - lambda is resolved only to
+// 2^-53 absolutely: too coarse for the Newton steps of (E7), and for the
+// first-order terms of (E8) and (E9), when 1 - lambda is small, i.e. Q1
+// much larger than Q2; measured there before the swap: relative errors up
+// to 1.7e-9 with PW85_OK on x86-64-v4, NO_CONVERGENCE elsewhere).
+// mu^2(r, Q1, Q2) = mu^2(-r, Q2, Q1): mu2 and the Hessian are the same,
+// g changes sign, d_q1 and d_q2 swap, and so do the torques (rotating
+// ellipsoid 1 about its centre is rotating the swapped pair's ellipsoid 2;
+// x0' = x0 - r, g' = -g in (E4)).
+inline Status derivatives_dispatch(Status status, MethodResult const &res, Vec3 const &r,
+                                   Sym3 const &q1, Sym3 const &q2, Derivatives &d) noexcept {
+  bool const near_one = is_solved(status, res) && res.lambda > 1.0 - 0x1p-10;
+  Status const first = near_one ? kNoConvergence : derivatives_variant(status, res, r, q1, q2, d);
+  if (first != kNoConvergence || !is_solved(status, res) || !(res.lambda > 0.5)) return first;
+  MethodResult swapped = res;
+  swapped.lambda = 1.0 - res.lambda;
+  Vec3 const nr{{-r[0], -r[1], -r[2]}};
+  Derivatives e;
+  Status const second = derivatives_variant(status, swapped, nr, q2, q1, e);
+  if (second != kOk && second != kInaccurate) {
+    if (near_one) d = e;  // all NaN
+    return second;
+  }
+  d.mu2 = e.mu2;
+  d.lambda = 1.0 - e.lambda;
+  for (int i = 0; i < kDim; ++i) {
+    d.d_r12[i] = -e.d_r12[i];
+    d.d_theta1[i] = e.d_theta2[i];
+    d.d_theta2[i] = e.d_theta1[i];
+  }
+  for (int k = 0; k < kSym; ++k) {
+    d.d_q1[k] = e.d_q2[k];
+    d.d_q2[k] = e.d_q1[k];
+    d.hess_r12[k] = e.hess_r12[k];
+  }
+  return second;
 }
 
 // Magnitudes that contact_derivatives takes as they are (no rescaling).
@@ -365,7 +406,12 @@ Status contact_derivatives_from_default(Vec3 const &r, Sym3 const &q1, Sym3 cons
 // Magnitudes far from 1: mu^2(2^e r, 2^2e Q1, 2^2e Q2) = mu^2(r, Q1, Q2), so
 // the pair is solved with the larger matrix scaled to [1, 4) by an exact
 // power of two, and the derivatives scaled back: g by 2^e, d_q and the
-// Hessian by 2^2e; mu2, lambda and the torques are invariant.
+// Hessian by 2^2e; mu2, lambda and the torques are invariant. An r still
+// far from 1 after that (a far or a very close pair) is scaled alone to
+// [0.5, 1) by 2^-t: mu^2 is homogeneous of degree 2 in r, so mu2, the
+// torques and d_q scale back by 2^2t, g by 2^t, the Hessian not at all,
+// lambda is invariant. Every field is then computed at moderate magnitudes
+// and is finite wherever its value is in the range of double.
 Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                            Derivatives &d) noexcept {
   double const mq1 = fastd::max_abs6(q1), mq2 = fastd::max_abs6(q2);
@@ -383,6 +429,12 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   Vec3 rs;
   Sym3 a, b;
   scale_pair(r, q1, q2, e, 2 * e, rs, a, b);
+  int t = 0;
+  double const mrs = fastd::max_abs3(rs);
+  if (!(mrs > 0x1p-30 && mrs < 0x1p30)) {
+    std::frexp(mrs, &t);
+    scale_by_power_of_two(rs.x, kDim, -t);
+  }
   Derivatives s;
   MethodResult res;
   Status const status =
@@ -391,9 +443,12 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
     d = s;  // all NaN
     return status;
   }
-  scale_by_power_of_two(s.d_r12, kDim, e);
-  scale_by_power_of_two(s.d_q1, kSym, 2 * e);
-  scale_by_power_of_two(s.d_q2, kSym, 2 * e);
+  s.mu2 = std::ldexp(s.mu2, 2 * t);
+  scale_by_power_of_two(s.d_r12, kDim, e + t);
+  scale_by_power_of_two(s.d_theta1, kDim, 2 * t);
+  scale_by_power_of_two(s.d_theta2, kDim, 2 * t);
+  scale_by_power_of_two(s.d_q1, kSym, 2 * e + 2 * t);
+  scale_by_power_of_two(s.d_q2, kSym, 2 * e + 2 * t);
   scale_by_power_of_two(s.hess_r12, kSym, 2 * e);
   double const *all = &s.mu2;
   for (int i = 0; i < kFields; ++i) {
@@ -402,7 +457,7 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
       d = Derivatives{nan, nan, {nan, nan, nan}, {nan, nan, nan}, {nan, nan, nan},
                       {nan, nan, nan, nan, nan, nan}, {nan, nan, nan, nan, nan, nan},
                       {nan, nan, nan, nan, nan, nan}};
-      return kNoConvergence;  // a derivative out of the range of double
+      return kNoConvergence;  // a field out of the range of double
     }
   }
   d = s;

@@ -570,7 +570,7 @@ namespace {
 [[gnu::always_inline]] inline bool screened_body(double const *rp, double const *q1p,
                                                  double const *q2p, int &verdict,
                                                  Status &status) noexcept {
-  if (!screen_pair_ldl(rp, q1p, q2p, kRangeLo, kRangeHi)) return false;
+  if (!screen_overlap_pair(rp, q1p, q2p, kRangeLo, kRangeHi)) return false;
   Vec3 const r = load_vec3(rp);
   Sym3 const q1 = load_sym3(q1p), q2 = load_sym3(q2p);
   status = kOk;

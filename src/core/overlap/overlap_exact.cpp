@@ -17,12 +17,14 @@
 #include <cstdint>
 
 #include "arith/bigint.hpp"
+#include "arith/exact_double.hpp"
 #include "overlap/overlap.hpp"
 
 namespace pw85 {
 
 using exact::BigInt;
 using exact::Ctx;
+using exact::to_integers;
 
 namespace {
 
@@ -35,55 +37,6 @@ struct Poly {
 
 void trim(Poly &p) noexcept {
   while (p.deg >= 0 && p.c[p.deg].s == 0) --p.deg;
-}
-
-// x = sign * m * 2^e with m odd (x != 0).
-struct Decomposed {
-  int sign;
-  std::uint64_t m;
-  int e;
-};
-
-Decomposed decompose(double x) noexcept {
-  Decomposed d{0, 0, 0};
-  if (x == 0.0) return d;
-  int ex;
-  double const f = std::frexp(std::fabs(x), &ex);  // |x| = f 2^ex, f in [0.5, 1)
-  std::uint64_t m = static_cast<std::uint64_t>(std::ldexp(f, 53));
-  int e = ex - 53;
-  while ((m & 1u) == 0) {
-    m >>= 1;
-    ++e;
-  }
-  d.sign = x > 0 ? 1 : -1;
-  d.m = m;
-  d.e = e;
-  return d;
-}
-
-// Sets out[i] = x[i] * 2^-emin as exact integers; returns emin (0 if all
-// entries vanish).
-int to_integers(Ctx &ctx, double const *x, int n, BigInt *const *out) noexcept {
-  Decomposed d[12];
-  int emin = 0;
-  bool any = false;
-  for (int i = 0; i < n; ++i) {
-    d[i] = decompose(x[i]);
-    if (d[i].sign != 0 && (!any || d[i].e < emin)) {
-      emin = d[i].e;
-      any = true;
-    }
-  }
-  for (int i = 0; i < n; ++i) {
-    long const shift = static_cast<long>(d[i].e) - emin;
-    if (d[i].sign != 0 && shift > 64L * exact::kLimbs) {
-      ctx.overflow = true;
-      exact::set_zero(*out[i]);
-      continue;
-    }
-    exact::set_shifted(ctx, *out[i], d[i].sign, d[i].m, static_cast<int>(shift));
-  }
-  return emin;
 }
 
 // Linear polynomial u + v lambda and products of two of them.

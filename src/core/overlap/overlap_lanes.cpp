@@ -23,6 +23,7 @@
 #include "common/fp.hpp"
 #include "common/isa.hpp"
 #include "common/lanes.hpp"
+#include "common/spd.hpp"
 #include "overlap/bounded_sym.hpp"
 #include "overlap/overlap.hpp"
 
@@ -78,17 +79,13 @@ PW85_ALWAYS_INLINE SymB<W> bound(VecD<W> const q[kSym]) noexcept {
   return b;
 }
 
-// The L D L^T pivot test of screen.hpp (ldl_positive) in every lane: all
-// pivots > 0 and finite.
+// The positive-definiteness certificate of spd.hpp (certain_spd) in every
+// lane: the same operations, so the same decision as the one-pair screen.
 template <int W>
-PW85_ALWAYS_INLINE UMaskOf<VecD<W>> pivots_positive(VecD<W> const x[kSym]) noexcept {
-  typedef VecD<W> V;
-  V const i0 = 1.0 / x[0];
-  V const l1 = x[1] * i0, l2 = x[2] * i0;
-  V const d1 = x[3] - l1 * x[1];
-  V const e = x[4] - l2 * x[1];
-  V const d2 = x[5] - l2 * x[2] - (e / d1) * e;
-  return gt(x[0], 0.0) & gt(d1, 0.0) & gt(d2, 0.0) & le(d2, kMaxDouble);
+PW85_ALWAYS_INLINE UMaskOf<VecD<W>> certain_spd_lanes(VecD<W> const x[kSym]) noexcept {
+  VecD<W> d0, d1, d2;
+  spd_shifted_pivots(x[0], x[1], x[2], x[3], x[4], x[5], d0, d1, d2);
+  return gt(d0, 0.0) & gt(d1, 0.0) & gt(d2, 0.0) & le(d2, kMaxDouble);
 }
 
 // The certificate (O18) of overlap.cpp's subdivide at tau = wt / (ws + wt):
@@ -136,13 +133,13 @@ PW85_ALWAYS_INLINE void lanes_body(double const *const rp[W], double const *cons
   gather<kDim, W>(rp, r);
   gather<kSym, W>(q1p, a);
   gather<kSym, W>(q2p, b);
-  // --- Screen (screen.hpp, screen_pair_ldl), and r != 0. ---
+  // --- Screen (screen.hpp, screen_overlap_pair), and r != 0. ---
   V qm = vabs(a[0]);
   for (int i = 1; i < kSym; ++i) qm = vmax(qm, vabs(a[i]));
   for (int i = 0; i < kSym; ++i) qm = vmax(qm, vabs(b[i]));
   M const screened = le(vabs(r[0]), kOverlapRangeHi) & le(vabs(r[1]), kOverlapRangeHi) &
                      le(vabs(r[2]), kOverlapRangeHi) & ge(qm, kOverlapRangeLo) &
-                     le(qm, kOverlapRangeHi) & pivots_positive<W>(a) & pivots_positive<W>(b) &
+                     le(qm, kOverlapRangeHi) & certain_spd_lanes<W>(a) & certain_spd_lanes<W>(b) &
                      (ne(r[0], 0.0) | ne(r[1], 0.0) | ne(r[2], 0.0));
   // --- filters_inline: separating plane orthogonal to r (O11). ---
   Bw const rb[kDim] = {pos<W>(r[0]), pos<W>(r[1]), pos<W>(r[2])};
