@@ -17,14 +17,14 @@ R_i = I + sin(th) K + (1 - cos(th)) K^2, th = t |w_i|, K = [w_i / |w_i|]x
 (Rodrigues) at 45 digits. mu^2(t) = max over lambda of
 f(lambda) = lambda (1 - lambda) r^T Q(lambda)^{-1} r by a safeguarded Newton
 iteration on f'(lambda) = (1 - lambda)^2 s^T Q1 s - lambda^2 s^T Q2 s
-(f'' = -2 (Q1 s)^T Q(lambda)^{-1} (Q2 s)), s = Q(lambda)^{-1} r, to 1e-42.
+(f'' = -2 (Q1 s)^T Q(lambda)^{-1} (Q2 s)), s = Q(lambda)^{-1} r, to 1e-36.
 dmu^2/dt = lambda (1 - lambda) (2 s.v - 2 (1 - lambda) s.(w1 x Q1 s)
 - 2 lambda s.(w2 x Q2 s)) (envelope theorem).
 
 Reference of a trajectory on [0, t_max = 1]: a grid of 512 intervals plus
 64 per turn of the faster body, evaluated in float64 (numpy) to locate
-features, every float64 sign change of mu^2 - 1 checked in mpmath; every local
-minimum of the grid below 1.01 is refined in mpmath (zero of dmu^2/dt,
+features, every float64 sign change of mu^2 - 1 checked in mpmath; every minimum of
+the grid over 7 points below 1.01 is refined in mpmath (zero of dmu^2/dt,
 safeguarded secant), every crossing of 1 and of L = 1 - 2.3e-13 by a
 safeguarded secant in mpmath to 1e-30. Recorded: mu^2(0) - 1, the smallest
 mu^2 - 1 and where, t_c (first crossing of mu^2 = 1), t_d (the last
@@ -149,7 +149,7 @@ def mu2_static(r, A, B, lam0=0.5):
         new = lam + step if step is not None else None
         if new is None or not (lo < new < hi):
             new = (lo + hi) / 2
-        if abs(new - lam) < mpf(10) ** (-42) or hi - lo < mpf(10) ** (-42):
+        if abs(new - lam) < mpf(10) ** (-36) or hi - lo < mpf(10) ** (-36):
             lam = new
             break
         lam = new
@@ -275,10 +275,12 @@ def reference(tr):
         if sgn[j - 1] and not sgn[j] and vals[j] is not None and vals[j - 1] is not None:
             crossings1.append(secant_root(fm1, ts[j - 1], ts[j], val(j - 1), val(j)))
     # local minima of the grid
+    last = -10
     for j in range(n + 1):
-        lo, hi = max(j - 1, 0), min(j + 1, n)
-        if not (g[j] <= g[lo] and g[j] <= g[hi] and g[j] < 1.01):
-            continue
+        lo, hi = max(j - 3, 0), min(j + 3, n)
+        if not (g[j] <= g[lo:hi + 1].min() and g[j] < 1.01) or j - last <= 3:
+            continue  # a minimum over 7 points (float64 noise), once per window
+        last = j
         a, b = max(j - 2, 0), min(j + 2, n)
         fa = tr.mu2(mpf(ts[a]), True)[1]
         fb = tr.mu2(mpf(ts[b]), True)[1]

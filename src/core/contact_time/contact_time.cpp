@@ -222,7 +222,8 @@ double secant(Sample const &a, Sample const &b) noexcept {
 // evaluations. Once Newton's step is below tol / 2, the next evaluation is
 // placed tol / 4 beyond its root, across the crossing, so that the bracket
 // closes to below tol. Stops on a bracket below tol (writes Newton's root
-// or the secant inside it), on two consecutive doubles, or on a sample
+// from its end nearer the crossing, else the last prediction or the secant,
+// inside it), on two consecutive doubles, or on a sample
 // whose enclosure contains 1 (|mu^2 - 1| within its width: that time).
 // Returns false when an evaluation fails or the budget runs out.
 bool refine(Motion const &mo, double tol, Sample a, Sample b, double &t,
@@ -258,7 +259,12 @@ bool refine(Motion const &mo, double tol, Sample a, Sample b, double &t,
     }
   }
   if (!(b.t - a.t <= tol) && b.t != std::nextafter(a.t, b.t)) return false;
-  t = pred >= a.t && pred <= b.t ? pred : secant(a, b);
+  // Inside the bracket: Newton's root from the end nearer the crossing, or
+  // the last prediction, or the secant.
+  Sample const &near = std::fabs(a.f) <= std::fabs(b.f) ? a : b;
+  double const last = near.t + newton_step(near.f, near.df);
+  if (last >= a.t && last <= b.t) t = last;
+  else t = pred >= a.t && pred <= b.t ? pred : secant(a, b);
   return true;
 }
 

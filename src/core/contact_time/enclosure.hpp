@@ -10,7 +10,7 @@
 //    mu <= max((1 - lambda) sqrt(a), lambda sqrt(b) + |res| / a_min,2).
 // Both equal mu at lambda*, s = Q(lambda*)^{-1} r. s is solved by iterative
 // refinement (residual in double-double, corrections by the Cholesky factor
-// of the rounded Q(lambda)); lambda by Newton steps on
+// of the rounded Q(lambda)); lambda, in double-double, by Newton steps on
 // f'(lambda) = (1 - lambda)^2 a - lambda^2 b (formed in double-double; f''
 // = -2 (Q1 s)^T Q(lambda)^{-1} (Q2 s) in double) until the bounds meet.
 // Rounding: a, b, r.s carry relative errors below 64 u^2 a_max,i^2 / a_min,i^2
@@ -70,13 +70,14 @@ inline bool enclose_mu2(ExactPose const &pose, Sym3 const &q1, Sym3 const &q2, S
   Vec3 const rd{{to_double(pose.r[0]), to_double(pose.r[1]), to_double(pose.r[2])}};
   double const rn = std::sqrt(dot(rd, rd));
   if (!(lambda > 0.0 && lambda < 1.0)) lambda = 0.5;
+  DD lam{lambda, 0.0};  // lambda in double-double: the upper bound is first order in its error
   DD s[kDim];
   bool have_s = false;
   double best_w = std::numeric_limits<double>::infinity();
   for (int it = 0; it < 6; ++it) {
     CholInv c;
-    if (!chol_inv(interpolate(p1, p2, lambda), c)) return false;
-    DD const om = dd::two_sum(1.0, -lambda);
+    if (!chol_inv(interpolate(p1, p2, lam.hi), c)) return false;
+    DD const om = dd::sub(DD{1.0, 0.0}, lam);
     if (!have_s) {
       Vec3 const s0 = chol_solve(c, rd);
       for (int i = 0; i < kDim; ++i) s[i] = DD{s0[i], 0.0};
@@ -90,7 +91,7 @@ inline bool enclose_mu2(ExactPose const &pose, Sym3 const &q1, Sym3 const &q2, S
       rotated_times(pose.sp2, q2, s, a2);
       Vec3 res;
       for (int i = 0; i < kDim; ++i)
-        res[i] = to_double(dd::sub(dd::sub(pose.r[i], ddx::mul(a1[i], om)), ddx::mul(a2[i], lambda)));
+        res[i] = to_double(dd::sub(dd::sub(pose.r[i], ddx::mul(a1[i], om)), ddx::mul(a2[i], lam)));
       res_n = std::sqrt(dot(res, res));
       if (!std::isfinite(res_n)) return false;
       if (!(res_n > 0x1p-100 * rn) || !(res_n < 0.5 * prev)) break;
@@ -106,7 +107,7 @@ inline bool enclose_mu2(ExactPose const &pose, Sym3 const &q1, Sym3 const &q2, S
     DD const phi = ddx::mul(rs, dd::recip<ddx::kF>(dd::add(ha, hb)));
     DD const lo2 = ddx::mul(phi, phi);
     DD const up1 = ddx::mul(ha, om);
-    DD const up2 = dd::add(ddx::mul(hb, lambda), res_n / ax2.a_min * (1.0 + 8 * kU));
+    DD const up2 = dd::add(ddx::mul(hb, lam), res_n / ax2.a_min * (1.0 + 8 * kU));
     DD const up = up1.hi >= up2.hi ? up1 : up2;
     DD const hi2 = ddx::mul(up, up);
     double const l = to_double(dd::sub(lo2, DD{1.0, 0.0}));
@@ -123,15 +124,16 @@ inline bool enclose_mu2(ExactPose const &pose, Sym3 const &q1, Sym3 const &q2, S
     if (!(hi - lo > 8.0 * marg)) break;
     // Newton step on f'(lambda) = (1 - lambda)^2 a - lambda^2 b
     double const fp = to_double(dd::sub(ddx::mul(ddx::mul(a, om), om),
-                                        ddx::mul(ddx::mul(b, lambda), lambda)));
+                                        ddx::mul(ddx::mul(b, lam), lam)));
     Vec3 const sd{{s[0].hi, s[1].hi, s[2].hi}};
     Vec3 const q1s = multiply(p1, sd), q2s = multiply(p2, sd);
     double const fpp = -2.0 * dot(q1s, chol_solve(c, q2s));
     if (!(fpp < 0.0)) break;
-    double next = lambda - fp / fpp;
-    if (!(next > 0.0 && next < 1.0)) next = fp > 0.0 ? 0.5 * (lambda + 1.0) : 0.5 * lambda;
-    if (next == lambda) break;
-    lambda = next;
+    DD next = dd::add(lam, -fp / fpp);
+    if (!(next.hi > 0.0 && next.hi < 1.0))
+      next = DD{fp > 0.0 ? 0.5 * (lam.hi + 1.0) : 0.5 * lam.hi, 0.0};
+    if (next.hi == lam.hi && next.lo == lam.lo) break;
+    lam = next;
   }
   return best_w < std::numeric_limits<double>::infinity();
 }
