@@ -29,7 +29,10 @@
  * in the same passes: one PW85_METHOD_DEFAULT evaluation at t = 0 per
  * trajectory (ns_default), and the cost per evaluation over it.
  *
- *   build/bench/bench_contact_time [--verbose] [--class C] [--n 1000] [--reps 5] [--seed 42] > docs/bench_contact_time.csv
+ *   build/bench/bench_contact_time [--verbose] [--still] [--class C] [--n 1000] [--reps 5] [--seed 42] > docs/bench_contact_time.csv
+ *
+ * --still: the same trajectories with w1 = w2 = 0 (translation only; the
+ * kinds keep their names).
  *
  * The table goes to stderr, the CSV to stdout. Benchmark only. */
 #define _POSIX_C_SOURCE 199309L
@@ -61,10 +64,11 @@ static volatile double sink;
 static const char *kind_name[CT_KINDS] = {"random", "grazing", "spinning", "rotgraze"};
 
 int main(int argc, char **argv) {
-  int n = 1000, reps = 5, verbose = 0, only = -1;
+  int n = 1000, reps = 5, verbose = 0, only = -1, still = 0;
   unsigned long long seed = 42;
   for (int i = 1; i < argc; i += 2) {
     if (!strcmp(argv[i], "--verbose")) { verbose = 1; i--; continue; }
+    if (!strcmp(argv[i], "--still")) { still = 1; i--; continue; }
     if (i + 1 >= argc) { fprintf(stderr, "option %s needs a value\n", argv[i]); return 2; }
     if (!strcmp(argv[i], "--n")) n = atoi(argv[i + 1]);
     else if (!strcmp(argv[i], "--reps")) reps = atoi(argv[i + 1]);
@@ -96,6 +100,9 @@ int main(int argc, char **argv) {
       kind[i] = CT_ROTGRAZE;
       ct_make(&gr, lo[c], hi[c], CT_ROTGRAZE, i - n, &tr[i]);
     }
+    if (still) /* the same trajectories without rotation */
+      for (int i = 0; i < nt; i++)
+        for (int j = 0; j < 3; j++) tr[i].w1[j] = tr[i].w2[j] = 0.0;
     double sum = 0, nsk[CT_KINDS][64], nsd[64];
     for (int r = 0; r < reps; r++) {
       for (int k = 0; k < CT_KINDS; k++) {

@@ -34,9 +34,9 @@ namespace {
 // minorant.hpp): the steps never shrink to zero at a minimum of mu^2.
 constexpr double kLevel = 1.0 - 0x1p-43;
 // The refinement (T8) stops on a certified bracket of width kRefineTol t_max.
-// Bisection at least every second step bounds its length; kRefineMaxIter
-// is a safeguard only (never reached: 2 x 53 halvings exhaust the doubles).
-constexpr double kRefineTol = 1e-12;
+// Newton's steps must halve, else regula falsi keeping a tenth of the
+// bracket on each side, else bisection; kRefineMaxIter is a safeguard.
+constexpr double kRefineTol = 1e-11;
 constexpr int kRefineMaxIter = 400;
 // DEFAULT's value on the rounded inputs decides the sign of mu^2 - 1 only
 // where the first-order bound of the input perturbation (T9) stays below
@@ -215,45 +215,55 @@ double secant(Sample const &a, Sample const &b) noexcept {
 }
 
 // The crossing of mu^2 = 1 in [a, b], mu^2(a) > 1 and mu^2(b) <= 1
-// certified (T8): the bracket shrinks on certified signs only (sample with
-// decide: DEFAULT where its bound decides, else the enclosure). Candidates:
-// Newton's step from the last sample when it stays inside the bracket, else
-// regula falsi, bisection when the bracket did not halve in two
-// evaluations. Once Newton's step is below tol / 2, the next evaluation is
-// placed tol / 4 beyond its root, across the crossing, so that the bracket
-// closes to below tol. Stops on a bracket below tol (writes Newton's root
-// from its end nearer the crossing, else the last prediction or the secant,
-// inside it), on two consecutive doubles, or on a sample
-// whose enclosure contains 1 (|mu^2 - 1| within its width: that time).
-// Returns false when an evaluation fails or the budget runs out.
+// certified (T8). The bracket shrinks on certified signs only. Newton's
+// steps from the last sample, while they stay inside the bracket and at
+// least halve, are evaluated tol / 3 short of their root by DEFAULT alone
+// (their sign is used where its bound decides it; at a transversal
+// crossing it does, and the bracket often closes there); once a step is
+// below tol / 2, the next evaluation is
+// placed tol / 3 beyond its root, across the crossing, with its sign
+// decided (by the enclosure where DEFAULT's bound does not), so that the
+// bracket closes to below tol in one or two such probes. Otherwise regula
+// falsi or bisection, with decided signs. Stops on a bracket below tol
+// (writes Newton's root from its end nearer the crossing, else the last
+// prediction or the secant, inside it), on two consecutive doubles, or on a
+// decided sample whose enclosure contains 1 (|mu^2 - 1| within its width:
+// that time). Returns false when an evaluation fails or the budget runs
+// out.
 bool refine(Motion const &mo, double tol, Sample a, Sample b, double &t,
             int &evaluations) noexcept {
+  double const inf = std::numeric_limits<double>::infinity();
   Sample x = a;
-  double width = b.t - a.t, pred = std::numeric_limits<double>::quiet_NaN();
+  double pred = std::numeric_limits<double>::quiet_NaN(), last_step = inf;
   for (int it = 0;; ++it) {
     if (!(b.t - a.t > tol) || it == kRefineMaxIter) break;
-    double const newton = x.t + newton_step(x.f, x.df);
-    bool probe = false;
+    double const step = newton_step(x.f, x.df), newton = x.t + step;
+    bool decide = true;
     double c;
-    if (newton > a.t && newton < b.t) {
+    if (newton > a.t && newton < b.t && std::fabs(step) <= 0.5 * last_step) {
       pred = c = newton;
-      if (std::fabs(newton - x.t) <= 0.5 * tol) {
-        probe = true;
-        c = x.t == a.t ? newton + 0.25 * tol : newton - 0.25 * tol;
+      last_step = std::fabs(step);
+      if (std::fabs(step) <= 0.5 * tol) {  // probe across the predicted root
+        last_step = inf;  // Newton from the probe is taken
+        c = step >= 0.0 ? newton + tol / 3.0 : newton - tol / 3.0;
+        if (!(c > a.t && c < b.t)) c = step >= 0.0 ? 0.5 * (newton + b.t) : 0.5 * (a.t + newton);
+      } else {  // short of the root by tol / 3: a sample DEFAULT can place
+        decide = false;
+        c = step >= 0.0 ? newton - tol / 3.0 : newton + tol / 3.0;
       }
     } else {
+      last_step = inf;
       pred = c = secant(a, b);
+      if (!(c > a.t && c < b.t) || !(std::fmin(c - a.t, b.t - c) > 0.1 * (b.t - a.t)))
+        c = a.t + 0.5 * (b.t - a.t);
     }
-    if (!(c > a.t && c < b.t) || (!probe && it % 2 == 1 && b.t - a.t > 0.5 * width))
-      c = a.t + 0.5 * (b.t - a.t);
-    if (it % 2 == 1) width = b.t - a.t;
     if (!(c > a.t && c < b.t)) break;  // a and b are consecutive doubles
-    if (evaluations >= kContactTimeMaxEval || !sample(mo, c, true, x, evaluations)) return false;
+    if (evaluations >= kContactTimeMaxEval || !sample(mo, c, decide, x, evaluations)) return false;
     if (x.lo > 0.0) {
       a = x;
     } else if (x.hi <= 0.0) {
       b = x;
-    } else {  // |mu^2 - 1| below the enclosure's resolution
+    } else if (decide) {  // |mu^2 - 1| below the enclosure's resolution
       t = c;
       return true;
     }
