@@ -161,11 +161,30 @@ bool sample(Motion const &mo, double t, bool decide, Sample &p, int &evaluations
   }
   ExactPose pose;
   ExactPose const *pp = nullptr;
-  if (mo.rotating) {
-    pose = exact_pose(mo.r0, mo.v, t, mo.w1, mo.w2);
-    pp = &pose;
+  if (!mo.rotating) {
+    p.ok = have_dir && minorant_at(mo, nullptr, t, dir, p.m);
+  } else if (have_dir) {
+    // First the minorant of the rounded Q_i(t), lowered by the effect of
+    // their rounding (|dh_i| <= dQ_i / (2 h_i), |d(h_i')| <= |w_i| dQ_i / h_i,
+    // dQ_i as for e_in): certified where the gap is wide; else the exact one.
+    double const dq1 = 16 * kU * mo.qf1 + 3 * kU * t * mo.cn1;
+    double const dq2 = 16 * kU * mo.qf2 + 3 * kU * t * mo.cn2;
+    p.ok = minorant(mo.r0, mo.v, t, p1, mo.w1, p2, mo.w2, dir, kLevel, p.m);
+    double margin = 0.0;
+    if (p.ok) {
+      margin = 0.5 * (dq1 / p.m.h[0] + dq2 / p.m.h[1]) * (1.0 + 1e-12);
+      p.m.gap -= margin;
+      p.m.slope -= (norm(mo.w1) * dq1 / p.m.h[0] + norm(mo.w2) * dq2 / p.m.h[1]) * (1.0 + 1e-12);
+    }
+    // the exact minorant where the margin would cost more than a tenth of the gap
+    if (!(p.ok && p.m.gap > 9.0 * margin)) {
+      pose = exact_pose(mo.r0, mo.v, t, mo.w1, mo.w2);
+      pp = &pose;
+      p.ok = minorant_at(mo, pp, t, dir, p.m);
+    }
+  } else {
+    p.ok = false;
   }
-  p.ok = have_dir && minorant_at(mo, pp, t, dir, p.m);
   bool const undecided = !(p.lo > 0.0) && !(p.hi <= 0.0);
   bool const stuck = !(p.ok && p.m.gap > 0.0) && !(p.hi <= 0.0);
   if ((decide && undecided) || stuck) {
