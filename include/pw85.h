@@ -664,7 +664,7 @@ PW85_API int pw85_scene_contact_derivatives(long long n, double const *centres,
  * mu^2(t) < 1 - 2.3e-13; a contact at *t > 0 is reported only where
  * mu^2 <= 1 was certified, so never when mu^2 > 1 on (0, t_max];
  * trajectories whose minimum of mu^2 lies in [1 - 2.3e-13, 1] may go either
- * way. *t lies in a certified bracket of width 1e-11 t_max around a
+ * way. *t lies in a certified bracket of width 1e-10 t_max around a
  * crossing of mu^2 = 1: never earlier than the first crossing by more than
  * that, and within it of the first crossing, or of the one that starts the
  * first dip below 1 - 2.3e-13. A spin about an axis of symmetry (Q_i(t)

@@ -36,7 +36,7 @@ constexpr double kLevel = 1.0 - 0x1p-43;
 // The refinement (T8) stops on a certified bracket of width kRefineTol t_max.
 // Newton's steps must halve, else regula falsi keeping a tenth of the
 // bracket on each side, else bisection; kRefineMaxIter is a safeguard.
-constexpr double kRefineTol = 1e-11;
+constexpr double kRefineTol = 1e-10;
 constexpr int kRefineMaxIter = 400;
 // DEFAULT's value on the rounded inputs decides the sign of mu^2 - 1 only
 // where the first-order bound of the input perturbation (T9) stays below
@@ -143,11 +143,11 @@ bool sample(Motion const &mo, double t, bool decide, Sample &p, int &evaluations
   // t |w_i| rounded (3 u t ||[W_i, Q_i]||); doubled.
   double e_in = inf;
   if (have_dir) {
-    double const sn = norm(dir);
+    double const sn = std::sqrt(dot(dir, dir));  // inf or NaN: e_in not trusted
     double const dq1 = mo.rotating ? 16 * kU * mo.qf1 + 3 * kU * t * mo.cn1 : 0.0;
     double const dq2 = mo.rotating ? 16 * kU * mo.qf2 + 3 * kU * t * mo.cn2 : 0.0;
     e_in = 2.0 * lam * (1.0 - lam) *
-           (2.0 * sn * kU * norm(r) + sn * sn * ((1.0 - lam) * dq1 + lam * dq2));
+           (2.0 * sn * kU * std::sqrt(dot(r, r)) + sn * sn * ((1.0 - lam) * dq1 + lam * dq2));
   }
   double const e = std::fmax(mu2 * kDefaultRelAccuracy, mr.mu2_error) + e_in;
   if (mu2 == inf) {  // kRange: mu^2 above DBL_MAX

@@ -12,7 +12,8 @@
 // refinement (residual in double-double, corrections by the Cholesky factor
 // of the rounded Q(lambda)); lambda, in double-double, by Newton steps on
 // f'(lambda) = (1 - lambda)^2 a - lambda^2 b (formed in double-double; f''
-// = -2 (Q1 s)^T Q(lambda)^{-1} (Q2 s) in double) until the bounds meet.
+// = -2 (Q1 s)^T Q(lambda)^{-1} (Q2 s) in double) until the bounds decide
+// the sign of mu^2 - 1 or meet (width ~1e-28).
 // Rounding: a, b, r.s carry relative errors below 64 u^2 a_max,i^2 / a_min,i^2
 // (the errors of R^T s and of the sums, against the smallest value of the
 // form); the bounds are widened by that and by 2^-100 for the remaining
@@ -121,7 +122,8 @@ inline bool enclose_mu2(ExactPose const &pose, Sym3 const &q1, Sym3 const &q2, S
       out.hi = hi;
       for (int i = 0; i < kDim; ++i) out.s[i] = to_double(s[i]);
     }
-    if (!(hi - lo > 8.0 * marg)) break;
+    // the sign of mu^2 - 1 decided, or the bounds at their floor
+    if (lo > 0.0 || hi <= 0.0 || !(hi - lo > 8.0 * marg)) break;
     // Newton step on f'(lambda) = (1 - lambda)^2 a - lambda^2 b
     double const fp = to_double(dd::sub(ddx::mul(ddx::mul(a, om), om),
                                         ddx::mul(ddx::mul(b, lam), lam)));
