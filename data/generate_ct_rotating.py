@@ -5,8 +5,9 @@ the exact double inputs, never by libpw85.
 
 Usage::
 
-    /usr/bin/python3 data/generate_ct_rotating.py [-n 210] [--seed 54]
+    /usr/bin/python3 data/generate_ct_rotating.py [-n 206] [--seed 54]
         [--workers 2] [-o tests/ct_rotating_reference.h]
+        [--inputs-from FILE]  (the references again, for the inputs of FILE)
 
 Requirements (Debian): python3-numpy python3-mpmath (python3-gmpy2 speeds
 mpmath up).
@@ -21,10 +22,13 @@ iteration on f'(lambda) = (1 - lambda)^2 s^T Q1 s - lambda^2 s^T Q2 s
 dmu^2/dt = lambda (1 - lambda) (2 s.v - 2 (1 - lambda) s.(w1 x Q1 s)
 - 2 lambda s.(w2 x Q2 s)) (envelope theorem).
 
-Reference of a trajectory on [0, t_max = 1]: a grid of 512 intervals plus
-64 per turn of the faster body, evaluated in float64 (numpy) to locate
+Reference of a trajectory on [0, t_max = 1]: a grid of 2048 intervals plus
+256 per turn of the faster body, mu^2 and dmu^2/dt evaluated in float64
+(numpy) to locate
 features, every float64 sign change of mu^2 - 1 checked in mpmath; every minimum of
-the grid over 7 points below 1.01 is refined in mpmath (zero of dmu^2/dt,
+the grid over 7 points below 1.01, and every grid interval where
+dmu^2/dt changes sign from - to + (a minimum however narrow) and 64
+float64 samples of it reach below 1.01, is refined in mpmath (zero of dmu^2/dt,
 safeguarded secant), every crossing of 1 and of L = 1 - 2.3e-13 by a
 safeguarded secant in mpmath to 1e-30. Recorded: mu^2(0) - 1, the smallest
 mu^2 - 1 and where, t_c (first crossing of mu^2 = 1), t_d (the last
@@ -181,9 +185,11 @@ class Traj:
         return val, rate, lam, s, A, B, r
 
     # float64 grid (numpy), for locating features only
-    def grid64(self, n):
+    def grid64(self, n, ts=None):
         d = self.d
-        ts = np.linspace(0.0, d["t_max"], n + 1)
+        if ts is None:
+            ts = np.linspace(0.0, d["t_max"], n + 1)
+        n = len(ts) - 1
         r = np.array(d["r0"])[None, :] + ts[:, None] * np.array(d["v"])[None, :]
 
         def rot(q, w):
@@ -212,6 +218,12 @@ class Traj:
         lam = 0.5 * (lo + hi)
         Q = (1 - lam)[:, None, None] * A + lam[:, None, None] * B
         s = np.linalg.solve(Q, r[:, :, None])[:, :, 0]
+        As, Bs = np.einsum("nij,nj->ni", A, s), np.einsum("nij,nj->ni", B, s)
+        w1, w2 = np.array(d["w1"], dtype=float), np.array(d["w2"], dtype=float)
+        rate = lam * (1 - lam) * (2 * s @ np.array(d["v"], dtype=float)
+                                  - 2 * (1 - lam) * np.einsum("ni,ni->n", s, np.cross(w1[None], As))
+                                  - 2 * lam * np.einsum("ni,ni->n", s, np.cross(w2[None], Bs)))
+        self.rate64 = rate
         return ts, lam * (1 - lam) * np.einsum("ni,ni->n", r, s)
 
 
@@ -246,8 +258,9 @@ def reference(tr):
     """Features of mu^2 on [0, t_max] (see the module docstring)."""
     d = tr.d
     wmax = max(math.sqrt(sum(x * x for x in d["w1"])), math.sqrt(sum(x * x for x in d["w2"])))
-    n = 512 + int(64 * wmax * d["t_max"] / (2 * math.pi))
+    n = 2048 + int(256 * wmax * d["t_max"] / (2 * math.pi))
     ts, g = tr.grid64(n)
+    rate = tr.rate64
     vals = [None] * (n + 1)
 
     def val(j):  # mpmath value at grid point j, mu^2 - 1
@@ -278,7 +291,12 @@ def reference(tr):
     last = -10
     for j in range(n + 1):
         lo, hi = max(j - 3, 0), min(j + 3, n)
-        if not (g[j] <= g[lo:hi + 1].min() and g[j] < 1.01) or j - last <= 3:
+        low = g[j] <= g[lo:hi + 1].min() and g[j] < 1.01
+        turn = j > 0 and rate[j - 1] < 0 <= rate[j]  # a minimum in (t_{j-1}, t_j], however narrow
+        if turn and not low:  # kept when 64 float64 samples of the interval reach below 1.01
+            sub = tr.grid64(0, np.linspace(ts[j - 1], ts[j], 65))[1]
+            turn = sub.min() < 1.01
+        if not (low or turn) or j - last <= 3:
             continue  # a minimum over 7 points (float64 noise), once per window
         last = j
         a, b = max(j - 2, 0), min(j + 2, n)
@@ -444,6 +462,26 @@ def hexs(x):
     return float(x).hex()
 
 
+def parse_header(path):
+    """The inputs of an existing output file: (cls, kind, delta, Traj)."""
+    out = []
+    for line in open(path):
+        if not line.startswith("  {"):
+            continue
+        v = [x.strip() for x in line.strip().strip("{},").split(",")]
+        f = [math.inf if x == "INFINITY" else float.fromhex(x) for x in v[2:]]
+        out.append((int(v[0]), int(v[1]), f[0], f[1:4], f[4:7], f[7:13], f[13:16], f[16:22],
+                    f[22:25]))
+    return out
+
+
+def rejob(args):
+    cls, kind, delta, r0, v, q1, w1, q2, w2 = args
+    tr = Traj(r0, v, q1, w1, q2, w2)
+    name = [k for k, i in KINDS.items() if i == kind][0]
+    return cls, name, 0, tr.d, reference(tr), delta
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("-n", type=int, default=210, help="trajectories per class")
@@ -451,7 +489,17 @@ def main():
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("-o", default="tests/ct_rotating_reference.h")
     ap.add_argument("--name", default="ct_rot")
+    ap.add_argument("--inputs-from", help="recompute the references of the inputs of this file")
     a = ap.parse_args()
+    if a.inputs_from:
+        out = []
+        with multiprocessing.Pool(a.workers) as pool:
+            for i, res in enumerate(pool.imap(rejob, parse_header(a.inputs_from), chunksize=1)):
+                out.append(res)
+                if i % 20 == 0:
+                    print(f"{i}", file=sys.stderr, flush=True)
+        write(a, out)
+        return
     jobs = []
     for cls in range(4):
         ng = (a.n * 5) // 7
@@ -467,6 +515,10 @@ def main():
                 out.append(res)
             if i % 20 == 0:
                 print(f"{i}/{len(jobs)}", file=sys.stderr, flush=True)
+    write(a, out)
+
+
+def write(a, out):
     lines = [
         "/* Generated by data/generate_ct_rotating.py (" + " ".join(sys.argv[1:]) + "): rotating",
         " * trajectories of pw85_contact_time and their references in mpmath (40",

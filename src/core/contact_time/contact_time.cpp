@@ -117,7 +117,7 @@ struct Sample {
 
 bool minorant_at(Motion const &mo, ExactPose const *pose, double t, Vec3 const &s, Minorant &m) noexcept {
   if (pose == nullptr) return minorant(mo.r0, mo.v, t, mo.a1, mo.w1, mo.a2, mo.w2, s, kLevel, m);
-  return minorant_rotating(*pose, mo.v, t, mo.a1, mo.w1, mo.a2, mo.w2, mo.ax1, mo.ax2, s, kLevel, m);
+  return minorant_rotating(*pose, mo.v, mo.a1, mo.w1, mo.a2, mo.w2, mo.ax1, mo.ax2, s, kLevel, m);
 }
 
 // Returns false when DEFAULT fails; counts its evaluations (the enclosure

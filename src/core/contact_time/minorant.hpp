@@ -126,7 +126,7 @@ inline bool minorant(Vec3 const &r0, Vec3 const &v, double t, Sym3 const &q1, Ve
 // h_i is that of the exact Q_i(t) to ~2 u relative, thin directions
 // included (the rounding of R_i^T u adds below 8 u^2 a_max,i^2 / h_i, in the
 // margin); D0' = sum_i w_i . (Q_i y_i x y_i) / h_i (R_i^T w_i = w_i).
-inline bool minorant_rotating(ExactPose const &pose, Vec3 const &v, double t, Sym3 const &q1,
+inline bool minorant_rotating(ExactPose const &pose, Vec3 const &v, Sym3 const &q1,
                               Vec3 const &w1, Sym3 const &q2, Vec3 const &w2,
                               AxisBounds const &ax1, AxisBounds const &ax2, Vec3 const &s,
                               double level, Minorant &m) noexcept {
@@ -141,7 +141,6 @@ inline bool minorant_rotating(ExactPose const &pose, Vec3 const &v, double t, Sy
   dd::DD const vu = dot_dd(v, u);
   dd::DD const n0 = dd::add(dot_dd(Vec3{{pose.r[0].hi, pose.r[1].hi, pose.r[2].hi}}, u),
                             dot_dd(Vec3{{pose.r[0].lo, pose.r[1].lo, pose.r[2].lo}}, u));
-  (void)t;
   double const d0 = h1 + h2;
   m.h[0] = h1;
   m.h[1] = h2;
