@@ -1,17 +1,21 @@
 // Certified conservative advancement for the first contact time, then a
-// safeguarded Newton refinement of the crossing (docs/contact_time.md
-// (T1)-(T8)).
+// refinement of the crossing on a certified bracket (docs/contact_time.md
+// (T1)-(T10)).
 //
-// At each t_k: mu^2(t_k) by PW85_METHOD_DEFAULT, with lambda and an error
-// bound e_k. Contact is confirmed at t_k when mu^2(t_k) + e_k <= 1 (T6).
+// At each t_k: mu^2(t_k) by PW85_METHOD_DEFAULT on r12(t_k), Q_i(t_k)
+// rounded to double, with lambda and bounds [lo, hi] on the exact mu^2:
+// DEFAULT's error bound plus the first-order effect of the rounding of its
+// inputs, or the enclosure of the exact motion (enclosure.hpp, (T9), (T10))
+// where those do not decide. Contact is confirmed at t_k when hi <= 1 (T6).
 // Otherwise u = s = Q(lambda)^{-1} r12 gives the lower bound g of (T5) at
-// the level m = kLevel < 1 and t_{k+1} = t_k + tau, tau the first zero of g:
-// mu >= kLevel on [t_k, t_{k+1}]. Near a crossing g is the tangent of mu - m
-// (u is the maximiser of (T2), D0' its derivative: envelope theorem), so the
-// steps converge as Newton's method from the safe side; near a minimum of
-// mu^2 above kLevel^2 the gap g(0) stays away from 0 and so do the steps.
-// Once confirmed, the crossing of mu^2 = 1 is refined inside the bracket
-// left by the advancement (T8).
+// the level m = kLevel < 1, formed for the exact Q_i(t_k) (minorant.hpp),
+// and t_{k+1} = t_k + tau, tau the first zero of g: mu >= kLevel on
+// [t_k, t_{k+1}]. Near a crossing g is the tangent of mu - m (u is the
+// maximiser of (T2), D0' its derivative: envelope theorem), so the steps
+// converge as Newton's method from the safe side; near a minimum of mu^2
+// above kLevel^2 the gap g(0) stays away from 0 and so do the steps. Once
+// confirmed, the crossing of mu^2 = 1 is refined inside the bracket left by
+// the advancement (T8).
 #include "contact_time/contact_time.hpp"
 
 #include <cmath>
@@ -20,8 +24,8 @@
 #include "contact/contact.hpp"
 #include "contact_time/axes.hpp"
 #include "contact_time/minorant.hpp"
-#include "contact_time/motion.hpp"
 #include "contact_time/enclosure.hpp"
+#include "contact_time/motion.hpp"
 
 namespace pw85 {
 
