@@ -41,6 +41,8 @@ module pw85
   integer(c_int), parameter :: PW85_ERR_UNKNOWN_METHOD = -5
   integer(c_int), parameter :: PW85_ERR_INACCURATE = -6
   integer(c_int), parameter :: PW85_ERR_RANGE = -7
+  integer(c_int), parameter :: PW85_ERR_CAPACITY = -8
+  integer(c_int), parameter :: PW85_ERR_NO_MEMORY = -9
   ! Distance of closest approach : PW85_DCA_THETA_TOL, PW85_DCA_MAX_EVAL.
   real(c_double), parameter :: PW85_DCA_THETA_TOL = 1.0e-8_c_double
   integer(c_int), parameter :: PW85_DCA_MAX_EVAL = 100

@@ -1,0 +1,711 @@
+// The scene object (scene.hpp, docs/scene.md).
+//
+// Broad phase: a cell grid whose cells are at least 2 s R_max wide (R_max
+// the largest bounding-sphere radius), pairs of each cell with itself and
+// with the neighbour cells of higher index; then two conservative tests,
+// each rejecting a pair only when its ellipsoids certainly do not overlap:
+// the bounding spheres (|r12| >= s (R_i + R_j)), and a separating plane of
+// normal n = adj(Q_i + Q_j) r12 (the normal of the contact plane at
+// lambda = 1/2, exact for equal parallel ellipsoids), through the support
+// functions h(n) = sqrt(n^T Q n):
+//     |n . r12| >= h_i(n) + h_j(n)  =>  mu^2 >= 1,                   (S1)
+// evaluated with rounding-error bounds. Narrow phase: the exact overlap
+// predicate (the lanes of overlap_lanes, else the one-pair predicate), so
+// each verdict is pw85_overlap's.
+#include "batch/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "common/fp.hpp"
+#include "common/screen.hpp"
+#include "common/sym3.hpp"
+#include "contact/contact.hpp"
+#include "overlap/overlap.hpp"
+
+namespace pw85 {
+
+namespace {
+
+using scene_box::Box;
+
+// A growable array of trivially copyable T on malloc (the library links
+// no C++ runtime): reserve() and push() return false when memory runs out.
+template <class T>
+struct Buffer {
+  T *data = nullptr;
+  long long size = 0, capacity = 0;
+  Buffer() = default;
+  Buffer(Buffer const &) = delete;
+  Buffer &operator=(Buffer const &) = delete;
+  ~Buffer() { std::free(data); }
+  bool reserve(long long c) noexcept {
+    if (c <= capacity) return true;
+    long long nc = capacity > 0 ? capacity : 64;
+    while (nc < c) nc *= 2;
+    void *p = std::realloc(data, static_cast<size_t>(nc) * sizeof(T));
+    if (p == nullptr) return false;
+    data = static_cast<T *>(p);
+    capacity = nc;
+    return true;
+  }
+  bool push(T const &v) noexcept {
+    if (size == capacity && !reserve(size + 1)) return false;
+    data[size++] = v;
+    return true;
+  }
+};
+
+template <class T>
+T *allocate(long long n) noexcept {
+  return static_cast<T *>(std::malloc(static_cast<size_t>(n > 0 ? n : 1) * sizeof(T)));
+}
+
+// Relative margin of the bounding radii and of the broad-phase comparisons
+// (far above the rounding errors, far below any physical scale).
+constexpr double kMargin = 0x1p-40;
+
+// Largest |coordinate| of a centre in a scene without a box.
+constexpr double kMaxOpenCoordinate = 0x1p500;
+
+// Bounding-sphere radius of the ellipsoid of q (positive definite):
+// sqrt of the smaller of the trace and the largest Gershgorin row sum,
+// rounded up.
+inline double bounding_radius(double const *q) noexcept {
+  return std::sqrt(scene_box::reach2(q) * (1 + kMargin)) * (1 + kMargin);
+}
+
+// Checks one particle: centre finite (and within kMaxFractional box
+// lengths, or kMaxOpenCoordinate without a box), q finite and positive
+// definite as pw85_overlap checks it.
+Status check_particle(Box const &box, double const *c, double const *q) noexcept {
+  if (!all_finite(c, 3) || !all_finite(q, 6)) return kInvalidArgument;
+  if (!ldl_positive_scaled(q)) return kNotSpd;
+  if (box.periodic) {
+    double f[3];
+    fractional(box, c, f);
+    for (int d = 0; d < 3; ++d)
+      if (!(std::fabs(f[d]) <= kMaxFractional)) return kRange;
+  } else {
+    for (int d = 0; d < 3; ++d)
+      if (!(std::fabs(c[d]) <= kMaxOpenCoordinate)) return kRange;
+  }
+  return kOk;
+}
+
+// Number of OpenMP threads: nthreads (0: the OpenMP default), at most the
+// processors and at most work.
+inline int threads_for(int nthreads, long long work) noexcept {
+#ifdef _OPENMP
+  long long t = nthreads > 0 ? nthreads : omp_get_max_threads();
+  long long const procs = omp_get_num_procs();
+  if (t > procs) t = procs;
+  if (t > work) t = work;
+  return t < 1 ? 1 : static_cast<int>(t);
+#else
+  (void)nthreads;
+  (void)work;
+  return 1;
+#endif
+}
+
+// r12 of the pair (i, j), i < j: c_j - c_i, or its minimum image.
+inline void pair_r12(Box const &box, double const *ci, double const *cj, double r[3]) noexcept {
+  for (int d = 0; d < 3; ++d) r[d] = cj[d] - ci[d];
+  if (box.periodic) scene_box::min_image(box, r);
+}
+
+// The bounding spheres of radius reach (their sum) do not meet: |r| >=
+// reach, with margin.
+inline bool spheres_apart(double const r[3], double reach) noexcept {
+  double const d2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+  return d2 >= reach * reach * (1 + kMargin);
+}
+
+// Upper bound of n^T Q n for a positive definite Q: the computed value plus
+// a bound of its rounding error, 32 u sum_a n_a^2 Q_aa (>= gamma_6 sum_ab
+// |n_a| |Q_ab| |n_b|, as |Q_ab| <= (Q_aa + Q_bb) / 2).
+inline double support2_upper(double const *q, double const n[3]) noexcept {
+  double const a0 = q[0] * n[0] + q[1] * n[1] + q[2] * n[2];
+  double const a1 = q[1] * n[0] + q[3] * n[1] + q[4] * n[2];
+  double const a2 = q[2] * n[0] + q[4] * n[1] + q[5] * n[2];
+  double const h = n[0] * a0 + n[1] * a1 + n[2] * a2;
+  double const diag = q[0] * n[0] * n[0] + q[3] * n[1] * n[1] + q[5] * n[2] * n[2];
+  double const up = h + 32 * kU * diag;
+  return up > 0.0 ? up : 0.0;
+}
+
+// (S1): true only when the plane of normal adj(qa + qb) r separates the
+// ellipsoids (mu^2 >= 1), with every rounding error bounded.
+inline bool plane_separates(double const r[3], double const *qa, double const *qb) noexcept {
+  double const a00 = qa[0] + qb[0], a01 = qa[1] + qb[1], a02 = qa[2] + qb[2];
+  double const a11 = qa[3] + qb[3], a12 = qa[4] + qb[4], a22 = qa[5] + qb[5];
+  double const c00 = a11 * a22 - a12 * a12, c01 = a02 * a12 - a01 * a22;
+  double const c02 = a01 * a12 - a02 * a11, c11 = a00 * a22 - a02 * a02;
+  double const c12 = a01 * a02 - a00 * a12, c22 = a00 * a11 - a01 * a01;
+  double const n[3] = {c00 * r[0] + c01 * r[1] + c02 * r[2], c01 * r[0] + c11 * r[1] + c12 * r[2],
+                       c02 * r[0] + c12 * r[1] + c22 * r[2]};
+  double const nr = n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
+  double const nr_abs =
+      std::fabs(n[0] * r[0]) + std::fabs(n[1] * r[1]) + std::fabs(n[2] * r[2]);
+  double const lhs = std::fabs(nr) - 8 * kU * nr_abs;
+  double const rhs = (std::sqrt(support2_upper(qa, n)) + std::sqrt(support2_upper(qb, n))) *
+                     (1 + 8 * kU);
+  return lhs > 0.0 && lhs >= rhs && std::isfinite(lhs);
+}
+
+// pw85_overlap for arguments already checked (finite, pivots of Q positive).
+inline Status overlap_one(double const *r, double const *a, double const *b,
+                          int &verdict) noexcept {
+  Status st = kOk;
+  if (overlap_screened(r, a, b, verdict, st)) return st;
+  if (!all_finite(r, 3)) return kInvalidArgument;
+  if (!ldl_positive_scaled(a) || !ldl_positive_scaled(b)) return kNotSpd;
+  return overlap(load_vec3(r), load_sym3(a), load_sym3(b), verdict);
+}
+
+// mu^2 of pw85_contact_function_method(DEFAULT) (NaN where it writes NaN).
+inline double mu2_default(double const *r, double const *a, double const *b) noexcept {
+  MethodResult m;
+  Status const s = contact_method_entry(r, a, b, kMethodDefault, m);
+  if (s == kOk || s == kNoConvergence || s == kInaccurate || s == kRange) return m.mu2;
+  return std::nan("");
+}
+
+struct Candidate {
+  long long i, j;
+  double r[3];
+};
+
+struct PairOut {
+  long long i, j;
+  double mu2;
+};
+
+// The exact verdicts of candidates [0, m) (matrices qv: the scene's or
+// scaled), W pairs at a time through overlap_lanes; overlapping pairs are
+// appended to out (mu2 by DEFAULT on the unscaled q when want_mu2).
+template <int W>
+Status narrow_phase(Candidate const *cand, long long m, double const *qv, double const *q,
+                    bool want_mu2, Buffer<PairOut> &out) noexcept {
+  for (long long k0 = 0; k0 < m; k0 += W) {
+    int const w = m - k0 < W ? static_cast<int>(m - k0) : W;
+    int v[W];
+    if (w == W) {
+      double const *rp[W], *ap[W], *bp[W];
+      for (int l = 0; l < W; ++l) {
+        rp[l] = cand[k0 + l].r;
+        ap[l] = qv + 6 * cand[k0 + l].i;
+        bp[l] = qv + 6 * cand[k0 + l].j;
+      }
+      overlap_lanes<W>(rp, ap, bp, v);
+    } else {
+      for (int l = 0; l < w; ++l) v[l] = -1;
+    }
+    for (int l = 0; l < w; ++l) {
+      Candidate const &c = cand[k0 + l];
+      if (v[l] < 0) {
+        Status const s = overlap_one(c.r, qv + 6 * c.i, qv + 6 * c.j, v[l]);
+        if (s != kOk) return s;
+      }
+      if (v[l] == 1) {
+        double const mu2 = want_mu2 ? mu2_default(c.r, q + 6 * c.i, q + 6 * c.j) : 0.0;
+        if (!out.push(PairOut{c.i, c.j, mu2})) return kNoMemory;
+      }
+    }
+  }
+  return kOk;
+}
+
+Status narrow(Candidate const *cand, long long m, double const *qv, double const *q,
+              bool want_mu2, Buffer<PairOut> &out) noexcept {
+  if (overlap_lanes_width() == kOverlapLanesV4)
+    return narrow_phase<kOverlapLanesV4>(cand, m, qv, q, want_mu2, out);
+  return narrow_phase<kOverlapLanes>(cand, m, qv, q, want_mu2, out);
+}
+
+// Bounding box of the centres (open scenes).
+void centre_bounds(long long n, double const *c, double lo[3], double hi[3]) noexcept {
+  for (int d = 0; d < 3; ++d) lo[d] = hi[d] = n > 0 ? c[d] : 0.0;
+  for (long long i = 1; i < n; ++i)
+    for (int d = 0; d < 3; ++d) {
+      if (c[3 * i + d] < lo[d]) lo[d] = c[3 * i + d];
+      if (c[3 * i + d] > hi[d]) hi[d] = c[3 * i + d];
+    }
+}
+
+inline long long max_cells_for(long long n) noexcept { return 2 * n + 8; }
+
+}  // namespace
+
+void cell_grid_init(CellGrid &g, Box const &b, double const lo[3], double const hi[3],
+                    double rho, long long max_cells) noexcept {
+  g = CellGrid{};
+  g.box = b;
+  g.periodic = b.periodic;
+  if (b.periodic) {
+    double const t = b.xy * b.yz - b.xz;
+    g.width[2] = b.l[2];
+    g.width[1] = b.l[1] / std::sqrt(1 + b.yz * b.yz);
+    g.width[0] = b.l[0] / std::sqrt(1 + b.xy * b.xy + t * t);
+    for (int d = 0; d < 3; ++d) g.width[d] *= 1 - kMargin;
+  } else {
+    for (int d = 0; d < 3; ++d) {
+      g.lo[d] = lo[d];
+      double const ext = hi[d] - lo[d];
+      g.width[d] = ext > 0.0 && std::isfinite(ext) ? ext * (1 - kMargin) : 0.0;
+      g.inv_ext[d] = g.width[d] > 0.0 ? 1.0 / ext : 0.0;
+    }
+  }
+  double nd[3];
+  for (int d = 0; d < 3; ++d) {
+    nd[d] = 1;
+    if (g.width[d] > 0.0) {
+      double const x = std::floor(1.0 / (rho / g.width[d] + 2 * kSlack));
+      if (x > 1) nd[d] = x;
+    }
+  }
+  double const cap = static_cast<double>(max_cells);
+  while (nd[0] * nd[1] * nd[2] > cap) {
+    int d = nd[0] >= nd[1] ? 0 : 1;
+    if (nd[2] > nd[d]) d = 2;
+    nd[d] = std::floor(nd[d] / 2);
+    if (nd[d] < 1) nd[d] = 1;
+  }
+  for (int d = 0; d < 3; ++d) g.n[d] = static_cast<long long>(nd[d]);
+  g.cells = g.n[0] * g.n[1] * g.n[2];
+}
+
+void scene_release(Scene &scene) noexcept {
+  std::free(scene.centres);
+  std::free(scene.q);
+  std::free(scene.radius);
+  std::free(scene.head);
+  std::free(scene.next);
+  std::free(scene.prev);
+  std::free(scene.cell_of);
+  scene = Scene{};
+}
+
+namespace {
+
+void unlink(Scene &s, long long i) noexcept {
+  long long const p = s.prev[i], x = s.next[i];
+  if (p >= 0) s.next[p] = x;
+  else s.head[s.cell_of[i]] = x;
+  if (x >= 0) s.prev[x] = p;
+}
+
+void link(Scene &s, long long i, long long cell) noexcept {
+  s.cell_of[i] = cell;
+  s.prev[i] = -1;
+  s.next[i] = s.head[cell];
+  if (s.next[i] >= 0) s.prev[s.next[i]] = i;
+  s.head[cell] = i;
+}
+
+long long cell_of_point(CellGrid const &g, double const *x) noexcept {
+  long long c[3];
+  cell_coords(g, x, c);
+  return cell_id(g, c);
+}
+
+}  // namespace
+
+Status scene_assign(Scene &scene, long long n, double const *centres, double const *q,
+                    double const *box_in, long long &bad) noexcept {
+  bad = -1;
+  Box box;
+  if (n < 0 || !scene_box::make_box(box_in, box)) return kInvalidArgument;
+  // Every particle is checked before anything changes.
+  double rmax = 0;
+  long long imax = -1, isecond = -1;
+  double g1 = -1, g2 = -1;  // the two largest reach2
+  for (long long i = 0; i < n; ++i) {
+    Status const s = check_particle(box, centres + 3 * i, q + 6 * i);
+    if (s != kOk) {
+      bad = i;
+      return s;
+    }
+    double const r = bounding_radius(q + 6 * i);
+    if (r > rmax) rmax = r;
+    double const g = scene_box::reach2(q + 6 * i);
+    if (g > g1) {
+      g2 = g1;
+      isecond = imax;
+      g1 = g;
+      imax = i;
+    } else if (g > g2) {
+      g2 = g;
+      isecond = i;
+    }
+  }
+  // The pw85_scene_* calls' bound on the pair of the two largest spheres
+  // (a particle with itself when n = 1: its images must not overlap it).
+  if (box.periodic && n > 0) {
+    long long const j = isecond >= 0 ? isecond : imax;
+    if (scene_box::too_large(box, q + 6 * imax, q + 6 * j)) {
+      bad = imax;
+      return kInvalidArgument;
+    }
+  }
+  double lo[3], hi[3];
+  centre_bounds(n, centres, lo, hi);
+  CellGrid grid;
+  cell_grid_init(grid, box, lo, hi, 2 * rmax * (1 + kMargin), max_cells_for(n));
+  // Storage: kept when large enough, else new arrays (the old ones stay
+  // until all the new ones exist).
+  Scene next_scene = scene;
+  bool const grow = n > scene.capacity;
+  bool const grow_grid = grid.cells > scene.grid_capacity;
+  if (grow) {
+    next_scene.centres = allocate<double>(3 * n);
+    next_scene.q = allocate<double>(6 * n);
+    next_scene.radius = allocate<double>(n);
+    next_scene.next = allocate<long long>(n);
+    next_scene.prev = allocate<long long>(n);
+    next_scene.cell_of = allocate<long long>(n);
+    next_scene.capacity = n;
+  }
+  if (grow_grid) {
+    next_scene.head = allocate<long long>(grid.cells);
+    next_scene.grid_capacity = grid.cells;
+  }
+  bool const ok = (!grow || (next_scene.centres && next_scene.q && next_scene.radius &&
+                             next_scene.next && next_scene.prev && next_scene.cell_of)) &&
+                  (!grow_grid || next_scene.head);
+  if (!ok) {
+    if (grow) {
+      std::free(next_scene.centres);
+      std::free(next_scene.q);
+      std::free(next_scene.radius);
+      std::free(next_scene.next);
+      std::free(next_scene.prev);
+      std::free(next_scene.cell_of);
+    }
+    if (grow_grid) std::free(next_scene.head);
+    return kNoMemory;
+  }
+  if (grow) {
+    std::free(scene.centres);
+    std::free(scene.q);
+    std::free(scene.radius);
+    std::free(scene.next);
+    std::free(scene.prev);
+    std::free(scene.cell_of);
+  }
+  if (grow_grid) std::free(scene.head);
+  scene = next_scene;
+  scene.n = n;
+  scene.box = box;
+  scene.grid = grid;
+  scene.radius_max = rmax;
+  if (n > 0) {
+    std::memcpy(scene.centres, centres, static_cast<size_t>(3 * n) * sizeof(double));
+    std::memcpy(scene.q, q, static_cast<size_t>(6 * n) * sizeof(double));
+  }
+  for (long long c = 0; c < grid.cells; ++c) scene.head[c] = -1;
+  for (long long i = n - 1; i >= 0; --i) {
+    scene.radius[i] = bounding_radius(q + 6 * i);
+    link(scene, i, cell_of_point(grid, centres + 3 * i));
+  }
+  return kOk;
+}
+
+Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacity,
+                   long long *i_out, long long *j_out, double *mu2_out, long long &count,
+                   long long *examined) noexcept {
+  if (!(s >= 1.0) || !std::isfinite(s) || nthreads < 0 || capacity < 0) return kInvalidArgument;
+  long long const n = scene.n;
+  Box const &box = scene.box;
+  double const s2 = s * s;
+  bool const scaled = s2 != 1.0;
+  // A box must hold the pairs of the two largest scaled spheres.
+  if (box.periodic && scaled && n > 0) {
+    double r1 = 0, r2 = 0;
+    for (long long i = 0; i < n; ++i) {
+      double const g = std::sqrt(scene_box::reach2(scene.q + 6 * i));
+      if (g > r1) {
+        r2 = r1;
+        r1 = g;
+      } else if (g > r2) {
+        r2 = g;
+      }
+    }
+    if (n == 1) r2 = r1;
+    if (s * (r1 + r2) > box.max_reach) return kInvalidArgument;
+  }
+  if (n < 2) {
+    count = 0;
+    if (examined) examined[0] = examined[1] = 0;
+    return kOk;
+  }
+  // The query's grid and the particles sorted by cell (counting sort,
+  // ascending index within a cell).
+  double const rho = 2 * s * scene.radius_max * (1 + 4 * kMargin);
+  double lo[3], hi[3];
+  centre_bounds(n, scene.centres, lo, hi);
+  CellGrid grid;
+  cell_grid_init(grid, box, lo, hi, rho, max_cells_for(n));
+  long long const cells = grid.cells;
+  Buffer<long long> start, cell_of, order;
+  Buffer<double> pos, rad, qscaled;
+  if (!start.reserve(cells + 1) || !cell_of.reserve(n) || !order.reserve(n) ||
+      !pos.reserve(3 * n) || !rad.reserve(n) || (scaled && !qscaled.reserve(6 * n)))
+    return kNoMemory;
+  for (long long c = 0; c <= cells; ++c) start.data[c] = 0;
+  for (long long i = 0; i < n; ++i) {
+    cell_of.data[i] = cell_of_point(grid, scene.centres + 3 * i);
+    ++start.data[cell_of.data[i] + 1];
+  }
+  for (long long c = 0; c < cells; ++c) start.data[c + 1] += start.data[c];
+  {
+    Buffer<long long> fill;
+    if (!fill.reserve(cells)) return kNoMemory;
+    std::memcpy(fill.data, start.data, static_cast<size_t>(cells) * sizeof(long long));
+    for (long long i = 0; i < n; ++i) order.data[fill.data[cell_of.data[i]]++] = i;
+  }
+  double const radius_scale = s * (1 + 4 * kMargin);
+  for (long long k = 0; k < n; ++k) {
+    long long const i = order.data[k];
+    for (int d = 0; d < 3; ++d) pos.data[3 * k + d] = scene.centres[3 * i + d];
+    rad.data[k] = scene.radius[i] * radius_scale;
+  }
+  double const *qv = scene.q;
+  if (scaled) {
+    for (long long k = 0; k < 6 * n; ++k) qscaled.data[k] = s2 * scene.q[k];
+    qv = qscaled.data;
+  }
+  long long kstencil[3];
+  for (int d = 0; d < 3; ++d) kstencil[d] = stencil(grid, d, rho);
+
+  int const nt = threads_for(nthreads, cells);
+  Buffer<PairOut> *results = allocate<Buffer<PairOut>>(nt);
+  if (results == nullptr) return kNoMemory;
+  for (int t = 0; t < nt; ++t) new (&results[t]) Buffer<PairOut>();
+  Status status = kOk;
+  long long spheres_total = 0, examined_total = 0;
+  long long const *ord = order.data;
+  long long const *cs = start.data;
+  double const *ps = pos.data;
+  double const *rs = rad.data;
+  bool const want_mu2 = mu2_out != nullptr;
+  constexpr long long kBlock = 256;
+#pragma omp parallel num_threads(nt) reduction(+ : spheres_total, examined_total)
+  {
+#ifdef _OPENMP
+    int const tid = omp_get_thread_num();
+#else
+    int const tid = 0;
+#endif
+    Buffer<PairOut> &out = results[tid];
+    Buffer<Candidate> cand;
+    Status local = cand.reserve(kBlock + 64) ? kOk : kNoMemory;
+#pragma omp for schedule(dynamic, 8)
+    for (long long c = 0; c < cells; ++c) {
+      if (local != kOk) continue;
+      long long cc[3] = {c % grid.n[0], (c / grid.n[0]) % grid.n[1], c / (grid.n[0] * grid.n[1])};
+      for (long long a = cs[c]; a < cs[c + 1] && local == kOk; ++a) {
+        long long const ia = ord[a];
+        double const *pa = ps + 3 * a;
+        double const ra = rs[a];
+        for_each_neighbour_cell(grid, cc, kstencil, [&](long long c2) noexcept {
+          if (c2 < c) return;
+          long long const b0 = c2 == c ? a + 1 : cs[c2];
+          for (long long b = b0; b < cs[c2 + 1]; ++b) {
+            long long const ib = ord[b];
+            double r[3];
+            long long i, j;
+            if (ia < ib) {
+              i = ia;
+              j = ib;
+              pair_r12(box, pa, ps + 3 * b, r);
+            } else {
+              i = ib;
+              j = ia;
+              pair_r12(box, ps + 3 * b, pa, r);
+            }
+            if (spheres_apart(r, ra + rs[b])) continue;
+            ++spheres_total;
+            if (plane_separates(r, qv + 6 * i, qv + 6 * j)) continue;
+            ++examined_total;
+            Candidate &k = cand.data[cand.size++];
+            k.i = i;
+            k.j = j;
+            k.r[0] = r[0];
+            k.r[1] = r[1];
+            k.r[2] = r[2];
+            if (cand.size == cand.capacity) {
+              local = narrow(cand.data, cand.size, qv, scene.q, want_mu2, out);
+              cand.size = 0;
+              if (local != kOk) return;
+            }
+          }
+        });
+        if (local == kOk && cand.size >= kBlock) {
+          local = narrow(cand.data, cand.size, qv, scene.q, want_mu2, out);
+          cand.size = 0;
+        }
+      }
+    }
+    if (local == kOk && cand.size > 0)
+      local = narrow(cand.data, cand.size, qv, scene.q, want_mu2, out);
+    if (local != kOk) {
+#pragma omp critical(pw85_scene_status)
+      {
+        // The error of lowest code wins, so the status is the same for
+        // every thread count when one kind of error occurs.
+        if (status == kOk || local < status) status = local;
+      }
+    }
+  }
+  long long total = 0;
+  for (int t = 0; t < nt; ++t) total += results[t].size;
+  Buffer<PairOut> merged;
+  Buffer<long long> first;
+  if (status == kOk && total > 0 && total <= capacity &&
+      (!merged.reserve(total) || !first.reserve(n + 1)))
+    status = kNoMemory;
+  if (status == kOk && total > 0 && total <= capacity) {
+    // Counting sort by i, then each i's pairs by j: one order for every
+    // thread count.
+    for (long long i = 0; i <= n; ++i) first.data[i] = 0;
+    for (int t = 0; t < nt; ++t)
+      for (long long k = 0; k < results[t].size; ++k) ++first.data[results[t].data[k].i + 1];
+    for (long long i = 0; i < n; ++i) first.data[i + 1] += first.data[i];
+    for (int t = 0; t < nt; ++t)
+      for (long long k = 0; k < results[t].size; ++k) {
+        PairOut const &p = results[t].data[k];
+        merged.data[first.data[p.i]++] = p;
+      }
+    long long a = 0;
+    for (long long i = 0; i < n; ++i) {
+      long long const b = first.data[i];
+      if (b - a > 1)
+        std::sort(merged.data + a, merged.data + b,
+                  [](PairOut const &x, PairOut const &y) { return x.j < y.j; });
+      a = b;
+    }
+  }
+  for (int t = 0; t < nt; ++t) results[t].~Buffer<PairOut>();
+  std::free(results);
+  if (status != kOk) return status;
+  count = total;
+  if (examined) {
+    examined[0] = spheres_total;
+    examined[1] = examined_total;
+  }
+  if (total > capacity) return kCapacity;
+  for (long long k = 0; k < total; ++k) {
+    i_out[k] = merged.data[k].i;
+    j_out[k] = merged.data[k].j;
+    if (mu2_out) mu2_out[k] = merged.data[k].mu2;
+  }
+  return kOk;
+}
+
+namespace {
+
+// Checks a trial (i, centre, q) of scene: index, values, and (periodic)
+// that its bounding sphere and the largest one fit the box. radius gets
+// the trial's bounding radius.
+Status check_trial(Scene const &scene, long long i, double const *centre, double const *q,
+                   double &radius) noexcept {
+  if (i < 0 || i >= scene.n) return kInvalidArgument;
+  Status const s = check_particle(scene.box, centre, q);
+  if (s != kOk) return s;
+  radius = bounding_radius(q);
+  if (scene.box.periodic) {
+    double const rt = std::sqrt(scene_box::reach2(q));
+    double const other = scene.n > 1 ? scene.radius_max : rt;
+    if (rt + (other > rt ? other : rt) > scene.box.max_reach) return kInvalidArgument;
+  }
+  return kOk;
+}
+
+}  // namespace
+
+Status scene_test_move(Scene const &scene, long long i, double const centre[3],
+                       double const q[6], long long &j_found) noexcept {
+  double rt;
+  Status const s = check_trial(scene, i, centre, q, rt);
+  if (s != kOk) return s;
+  CellGrid const &g = scene.grid;
+  double const rho = (rt + scene.radius_max) * (1 + 4 * kMargin);
+  long long k[3], c[3];
+  for (int d = 0; d < 3; ++d) k[d] = stencil(g, d, rho);
+  cell_coords(g, centre, c);
+  // Candidates in ascending j, then the exact predicate in that order.
+  constexpr int kLocal = 64;
+  Candidate local[kLocal];
+  Buffer<Candidate> heap;
+  Candidate *cand = local;
+  long long m = 0, cap = kLocal;
+  bool oom = false;
+  for_each_neighbour_cell(g, c, k, [&](long long cell) noexcept {
+    for (long long b = scene.head[cell]; b >= 0; b = scene.next[b]) {
+      if (b == i || oom) continue;
+      double r[3];
+      double const *cb = scene.centres + 3 * b;
+      if (i < b) pair_r12(scene.box, centre, cb, r);
+      else pair_r12(scene.box, cb, centre, r);
+      if (spheres_apart(r, rt + scene.radius[b])) continue;
+      double const *qa = i < b ? q : scene.q + 6 * b;
+      double const *qb = i < b ? scene.q + 6 * b : q;
+      if (plane_separates(r, qa, qb)) continue;
+      if (m == cap) {
+        if (!heap.reserve(2 * cap)) {
+          oom = true;
+          continue;
+        }
+        if (cand == local) std::memcpy(heap.data, local, sizeof local);
+        cand = heap.data;
+        cap = heap.capacity;
+      }
+      cand[m].i = b;  // the other particle
+      cand[m].j = b;
+      std::memcpy(cand[m].r, r, sizeof r);
+      ++m;
+    }
+  });
+  if (oom) return kNoMemory;
+  std::sort(cand, cand + m, [](Candidate const &x, Candidate const &y) { return x.j < y.j; });
+  for (long long t = 0; t < m; ++t) {
+    long long const b = cand[t].j;
+    double const *qa = i < b ? q : scene.q + 6 * b;
+    double const *qb = i < b ? scene.q + 6 * b : q;
+    int v = 0;
+    Status const st = overlap_one(cand[t].r, qa, qb, v);
+    if (st != kOk) return st;
+    if (v == 1) {
+      j_found = b;
+      return kOk;
+    }
+  }
+  j_found = -1;
+  return kOk;
+}
+
+Status scene_move(Scene &scene, long long i, double const centre[3], double const q[6]) noexcept {
+  double rt;
+  Status const s = check_trial(scene, i, centre, q, rt);
+  if (s != kOk) return s;
+  std::memcpy(scene.centres + 3 * i, centre, 3 * sizeof(double));
+  std::memcpy(scene.q + 6 * i, q, 6 * sizeof(double));
+  scene.radius[i] = rt;
+  if (rt > scene.radius_max) scene.radius_max = rt;
+  long long const cell = cell_of_point(scene.grid, centre);
+  if (cell != scene.cell_of[i]) {
+    unlink(scene, i);
+    link(scene, i, cell);
+  }
+  return kOk;
+}
+
+}  // namespace pw85
