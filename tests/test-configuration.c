@@ -224,6 +224,16 @@ static void test_pairs_triclinic(void) {
   run_cases(cases, G_N_ELEMENTS(cases));
 }
 
+/* Boxes of at least 3 cells along each axis at every s (the grid's fast
+ * path, with images across the faces, edges and corners of the box). */
+static void test_pairs_large(void) {
+  case_t const cases[] = {
+      {1, 14, 1200, 1, 1},  {3, 14, 1200, 1, 0}, {10, 14, 1500, 1, 1},
+      {0.1, 14, 1200, 1, 0}, {0, 14, 1500, 1, 1}, {50, 14, 1500, 1, 1},
+  };
+  run_cases(cases, G_N_ELEMENTS(cases));
+}
+
 /* A dense configuration: many particles per cell, many overlaps. */
 static void test_pairs_dense(void) {
   case_t const cases[] = {
@@ -519,6 +529,7 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_configuration_pairs/periodic", test_pairs_periodic);
   g_test_add_func("/pw85_configuration_pairs/triclinic", test_pairs_triclinic);
   g_test_add_func("/pw85_configuration_pairs/dense", test_pairs_dense);
+  g_test_add_func("/pw85_configuration_pairs/large_box", test_pairs_large);
   g_test_add_func("/pw85_configuration_test_move/brute_force", test_move_brute_force);
   g_test_add_func("/pw85_configuration_update/brute_force", test_update);
   g_test_add_func("/pw85_configuration/bad_input", test_bad_input);

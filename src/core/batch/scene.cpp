@@ -24,6 +24,7 @@
 #endif
 
 #include "common/fp.hpp"
+#include "common/orientation.hpp"
 #include "common/screen.hpp"
 #include "common/sym3.hpp"
 #include "contact/contact.hpp"
@@ -74,11 +75,32 @@ constexpr double kMargin = 0x1p-40;
 // Largest |coordinate| of a centre in a scene without a box.
 constexpr double kMaxOpenCoordinate = 0x1p500;
 
-// Bounding-sphere radius of the ellipsoid of q (positive definite):
-// sqrt of the smaller of the trace and the largest Gershgorin row sum,
-// rounded up.
+// Bounding-sphere radius of the ellipsoid of q (positive definite), rounded
+// up: the square root of an upper bound mu of its largest eigenvalue, mu =
+// the computed eigenvalue (1 + 2^-20), certified by the pivots of the
+// L D L^T factorisation of mu I - Q (each > 2^-30 mu, far above their
+// rounding errors); where the certificate fails, the smaller of the trace
+// and the largest Gershgorin row sum (the pw85_scene_* calls' bound).
 inline double bounding_radius(double const *q) noexcept {
-  return std::sqrt(scene_box::reach2(q) * (1 + kMargin)) * (1 + kMargin);
+  double const loose = std::sqrt(scene_box::reach2(q) * (1 + kMargin)) * (1 + kMargin);
+  Vec3 radii;
+  double rot[9];
+  if (ellipsoid_axes(load_sym3(q), radii, rot, nullptr) != kOk) return loose;
+  double lam = radii[0] > radii[1] ? radii[0] : radii[1];
+  lam = lam > radii[2] ? lam : radii[2];
+  double const mu = lam * lam * (1 + 0x1p-20);
+  double const tol = 0x1p-30 * mu;
+  double const a00 = mu - q[0], a01 = -q[1], a02 = -q[2];
+  double const a11 = mu - q[3], a12 = -q[4], a22 = mu - q[5];
+  if (!(a00 > tol)) return loose;
+  double const l10 = a01 / a00, l20 = a02 / a00;
+  double const d1 = a11 - l10 * a01;
+  if (!(d1 > tol)) return loose;
+  double const b12 = a12 - l20 * a01;
+  double const d2 = a22 - l20 * a02 - b12 * b12 / d1;
+  if (!(d2 > tol) || !std::isfinite(d2)) return loose;
+  double const tight = std::sqrt(mu) * (1 + kMargin);
+  return tight < loose ? tight : loose;
 }
 
 // Checks one particle: centre finite (and within kMaxFractional box
@@ -141,9 +163,12 @@ inline double support2_upper(double const *q, double const n[3]) noexcept {
   return up > 0.0 ? up : 0.0;
 }
 
-// (S1): true only when the plane of normal adj(qa + qb) r separates the
-// ellipsoids (mu^2 >= 1), with every rounding error bounded.
-inline bool plane_separates(double const r[3], double const *qa, double const *qb) noexcept {
+// (S1): true only when the plane of normal n = adj(qa + qb) r separates
+// the ellipsoids (mu^2 >= 1) for every r12 within r_error of r (each
+// component), with every rounding error bounded. Cheap sufficient test
+// first: |n . r|^2 >= 2 (h_a^2 + h_b^2) >= (h_a + h_b)^2.
+inline bool plane_separates(double const r[3], double const *qa, double const *qb,
+                            double r_error = 0.0) noexcept {
   double const a00 = qa[0] + qb[0], a01 = qa[1] + qb[1], a02 = qa[2] + qb[2];
   double const a11 = qa[3] + qb[3], a12 = qa[4] + qb[4], a22 = qa[5] + qb[5];
   double const c00 = a11 * a22 - a12 * a12, c01 = a02 * a12 - a01 * a22;
@@ -154,10 +179,13 @@ inline bool plane_separates(double const r[3], double const *qa, double const *q
   double const nr = n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
   double const nr_abs =
       std::fabs(n[0] * r[0]) + std::fabs(n[1] * r[1]) + std::fabs(n[2] * r[2]);
-  double const lhs = std::fabs(nr) - 8 * kU * nr_abs;
-  double const rhs = (std::sqrt(support2_upper(qa, n)) + std::sqrt(support2_upper(qb, n))) *
-                     (1 + 8 * kU);
-  return lhs > 0.0 && lhs >= rhs && std::isfinite(lhs);
+  double const n_abs = std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2]);
+  double const lhs = std::fabs(nr) - 8 * kU * nr_abs - n_abs * r_error * (1 + 8 * kU);
+  if (!(lhs > 0.0) || !std::isfinite(lhs)) return false;
+  double const ha = support2_upper(qa, n), hb = support2_upper(qb, n);
+  double const lhs2 = lhs * lhs;
+  if (lhs2 >= 2 * (ha + hb) * (1 + 8 * kU) && std::isfinite(lhs2)) return true;
+  return lhs >= (std::sqrt(ha) + std::sqrt(hb)) * (1 + 8 * kU);
 }
 
 // pw85_overlap for arguments already checked (finite, pivots of Q positive).
@@ -191,9 +219,12 @@ struct PairOut {
 // The exact verdicts of candidates [0, m) (matrices qv: the scene's or
 // scaled), W pairs at a time through overlap_lanes; overlapping pairs are
 // appended to out (mu2 by DEFAULT on the unscaled q when want_mu2).
+// cand[k].i, .j index qv; order (may be null: the identity) maps them to
+// the scene's indices, which index q.
 template <int W>
-Status narrow_phase(Candidate const *cand, long long m, double const *qv, double const *q,
-                    bool want_mu2, Buffer<PairOut> &out) noexcept {
+Status narrow_phase(Candidate const *cand, long long m, double const *qv,
+                    long long const *order, double const *q, bool want_mu2,
+                    Buffer<PairOut> &out) noexcept {
   for (long long k0 = 0; k0 < m; k0 += W) {
     int const w = m - k0 < W ? static_cast<int>(m - k0) : W;
     int v[W];
@@ -215,19 +246,20 @@ Status narrow_phase(Candidate const *cand, long long m, double const *qv, double
         if (s != kOk) return s;
       }
       if (v[l] == 1) {
-        double const mu2 = want_mu2 ? mu2_default(c.r, q + 6 * c.i, q + 6 * c.j) : 0.0;
-        if (!out.push(PairOut{c.i, c.j, mu2})) return kNoMemory;
+        long long const i = order ? order[c.i] : c.i, j = order ? order[c.j] : c.j;
+        double const mu2 = want_mu2 ? mu2_default(c.r, q + 6 * i, q + 6 * j) : 0.0;
+        if (!out.push(PairOut{i, j, mu2})) return kNoMemory;
       }
     }
   }
   return kOk;
 }
 
-Status narrow(Candidate const *cand, long long m, double const *qv, double const *q,
-              bool want_mu2, Buffer<PairOut> &out) noexcept {
+Status narrow(Candidate const *cand, long long m, double const *qv, long long const *order,
+              double const *q, bool want_mu2, Buffer<PairOut> &out) noexcept {
   if (overlap_lanes_width() == kOverlapLanesV4)
-    return narrow_phase<kOverlapLanesV4>(cand, m, qv, q, want_mu2, out);
-  return narrow_phase<kOverlapLanes>(cand, m, qv, q, want_mu2, out);
+    return narrow_phase<kOverlapLanesV4>(cand, m, qv, order, q, want_mu2, out);
+  return narrow_phase<kOverlapLanes>(cand, m, qv, order, q, want_mu2, out);
 }
 
 // Bounding box of the centres (open scenes).
@@ -418,6 +450,229 @@ Status scene_assign(Scene &scene, long long n, double const *centres, double con
   return kOk;
 }
 
+namespace {
+
+// A query's particles sorted by cell: start[c] .. start[c + 1] - 1 are the
+// sorted positions of cell c's particles (ascending index within a cell),
+// order[k] the index of sorted particle k, w its centre wrapped into the
+// box (periodic: H (f - floor f), f the fractional coordinates; open: the
+// centre), rad its bounding radius scaled by s; centre and q its centre and
+// matrix (times s^2), in the sorted order for locality.
+struct Sorted {
+  CellGrid grid;
+  Buffer<long long> start, order;
+  Buffer<double> wx, wy, wz, rad;
+  Buffer<double> centre, q;  // centres as given, matrices times s^2, sorted
+  // Bound of |w_b + shift - w_a - r12| over the pairs (rounding of the
+  // wrapped centres and of r12): 0 without a box.
+  double wrap_error = 0;
+};
+
+Status sort_by_cell(Scene const &scene, double rho_scaled, double radius_scale, double s2,
+                    Sorted &q) noexcept {
+  long long const n = scene.n;
+  Box const &box = scene.box;
+  double lo[3], hi[3];
+  centre_bounds(n, scene.centres, lo, hi);
+  // Largest |f| (periodic): the wrap error grows with it.
+  double fmax = 0;
+  double hsum = 0;
+  if (box.periodic) {
+    for (long long i = 0; i < n; ++i) {
+      double f[3];
+      fractional(box, scene.centres + 3 * i, f);
+      for (int d = 0; d < 3; ++d)
+        if (std::fabs(f[d]) > fmax) fmax = std::fabs(f[d]);
+    }
+    hsum = box.l[0] + std::fabs(box.xy_ly) + std::fabs(box.xz_lz) + box.l[1] +
+           std::fabs(box.yz_lz) + box.l[2];
+    q.wrap_error = 64 * kU * (fmax + 2) * hsum;
+  }
+  cell_grid_init(q.grid, box, lo, hi, rho_scaled + 2 * q.wrap_error, max_cells_for(n));
+  long long const cells = q.grid.cells;
+  Buffer<long long> cell_of, fill;
+  if (!q.start.reserve(cells + 1) || !q.order.reserve(n) || !cell_of.reserve(n) ||
+      !fill.reserve(cells) || !q.wx.reserve(n) || !q.wy.reserve(n) || !q.wz.reserve(n) ||
+      !q.rad.reserve(n) || !q.centre.reserve(3 * n) || !q.q.reserve(6 * n))
+    return kNoMemory;
+  long long *start = q.start.data;
+  for (long long c = 0; c <= cells; ++c) start[c] = 0;
+  for (long long i = 0; i < n; ++i) {
+    cell_of.data[i] = cell_of_point(q.grid, scene.centres + 3 * i);
+    ++start[cell_of.data[i] + 1];
+  }
+  for (long long c = 0; c < cells; ++c) start[c + 1] += start[c];
+  std::memcpy(fill.data, start, static_cast<size_t>(cells) * sizeof(long long));
+  for (long long i = 0; i < n; ++i) q.order.data[fill.data[cell_of.data[i]]++] = i;
+  for (long long k = 0; k < n; ++k) {
+    long long const i = q.order.data[k];
+    double const *c = scene.centres + 3 * i;
+    double w[3] = {c[0], c[1], c[2]};
+    if (box.periodic) {
+      double f[3];
+      fractional(box, c, f);
+      for (int d = 0; d < 3; ++d) f[d] -= std::floor(f[d]);
+      w[0] = f[0] * box.l[0] + f[1] * box.xy_ly + f[2] * box.xz_lz;
+      w[1] = f[1] * box.l[1] + f[2] * box.yz_lz;
+      w[2] = f[2] * box.l[2];
+    }
+    q.wx.data[k] = w[0];
+    q.wy.data[k] = w[1];
+    q.wz.data[k] = w[2];
+    q.rad.data[k] = scene.radius[i] * radius_scale;
+    for (int d = 0; d < 3; ++d) q.centre.data[3 * k + d] = c[d];
+    for (int t = 0; t < 6; ++t) q.q.data[6 * k + t] = s2 * scene.q[6 * i + t];
+  }
+  return kOk;
+}
+
+// The candidates of one query: for each sorted particle a, every b of the
+// same cell after it and of the 13 neighbour cells of the half stencil
+// ((dz, dy, dx) > 0 lexicographically), through the rows of 1 or 3
+// consecutive cells along x; a pair goes on when its wrapped distance does
+// not exclude its bounding spheres, then its exact r12 decides (sphere
+// test, (S1)). Needs every periodic axis to have at least 3 cells.
+struct CandidateSink {
+  Scene const &scene;
+  Sorted const &sorted;
+  bool want_mu2;
+  Buffer<Candidate> &cand;
+  Buffer<PairOut> &out;
+  long long spheres = 0, examined = 0;
+  Status status = kOk;
+
+  // The pair of sorted particles a, b, d their separation (within
+  // sorted.wrap_error of r12 = c_b - c_a or its minimum image, exact when
+  // d_exact), reach their radii sum.
+  void pair(long long a, long long b, double const d[3], bool d_exact, double reach) noexcept {
+    ++spheres;
+    double const *qa = sorted.q.data + 6 * a, *qb = sorted.q.data + 6 * b;
+    if (plane_separates(d, qa, qb, d_exact ? 0.0 : sorted.wrap_error)) return;
+    long long const ia = sorted.order.data[a], ib = sorted.order.data[b];
+    // r12 of the pair (i, j), i < j.
+    bool const forward = ia < ib;
+    long long const lo = forward ? a : b, hi = forward ? b : a;
+    double r[3];
+    pair_r12(scene.box, sorted.centre.data + 3 * lo, sorted.centre.data + 3 * hi, r);
+    if (spheres_apart(r, reach)) return;
+    ++examined;
+    Candidate &k = cand.data[cand.size++];
+    k.i = lo;
+    k.j = hi;
+    k.r[0] = r[0];
+    k.r[1] = r[1];
+    k.r[2] = r[2];
+    if (cand.size == cand.capacity) flush();
+  }
+  void flush() noexcept {
+    if (status == kOk && cand.size > 0)
+      status = narrow(cand.data, cand.size, sorted.q.data, sorted.order.data, scene.q, want_mu2,
+                      out);
+    cand.size = 0;
+  }
+};
+
+// Sorted positions [b0, b1) against particle a, their images shifted by
+// shift.
+inline void scan_range(Sorted const &q, long long a, long long b0, long long b1,
+                       double const shift[3], CandidateSink &sink) noexcept {
+  double const ax = q.wx.data[a] - shift[0], ay = q.wy.data[a] - shift[1],
+               az = q.wz.data[a] - shift[2];
+  double const ra = q.rad.data[a] + q.wrap_error;
+  double const *wx = q.wx.data, *wy = q.wy.data, *wz = q.wz.data, *rad = q.rad.data;
+  bool const exact = !q.grid.periodic;
+  for (long long b = b0; b < b1; ++b) {
+    double const dx = wx[b] - ax, dy = wy[b] - ay, dz = wz[b] - az;
+    double const reach = ra + rad[b];
+    if (dx * dx + dy * dy + dz * dz >= reach * reach * (1 + kMargin)) continue;
+    double const d[3] = {dx, dy, dz};
+    sink.pair(a, b, d, exact, rad[b] + q.rad.data[a]);
+  }
+}
+
+// Cell c's pairs, fast path (every periodic axis with >= 3 cells).
+void scan_cell(Sorted const &q, long long c, CandidateSink &sink) noexcept {
+  CellGrid const &g = q.grid;
+  Box const &box = g.box;
+  long long const nx = g.n[0], ny = g.n[1], nz = g.n[2];
+  long long const x = c % nx, y = (c / nx) % ny, z = c / (nx * ny);
+  long long const *start = q.start.data;
+  // Rows (dy, dz) of the half stencil: (0, 0) holds the cell itself and
+  // x + 1; (1, 0) and (-1..1, 1) hold x - 1 .. x + 1.
+  static constexpr int kRows[5][2] = {{0, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+  for (int row = 0; row < 5; ++row) {
+    long long yy = y + kRows[row][0], zz = z + kRows[row][1];
+    int wy = 0, wz = 0;
+    if (g.periodic) {
+      if (yy < 0) { yy += ny; wy = -1; }
+      if (yy >= ny) { yy -= ny; wy = 1; }
+      if (zz >= nz) { zz -= nz; wz = 1; }
+    } else if (yy < 0 || yy >= ny || zz >= nz) {
+      continue;
+    }
+    long long const base = nx * (yy + ny * zz);
+    // Up to two runs of consecutive cells [x0, x1] with their x wrap.
+    long long runs[2][2];
+    int wrap[2] = {0, 0};
+    int nrun = 0;
+    long long const lo = row == 0 ? x + 1 : x - 1, hi = x + 1;
+    if (g.periodic) {
+      if (lo < 0) {
+        runs[nrun][0] = nx - 1; runs[nrun][1] = nx - 1; wrap[nrun++] = -1;
+        runs[nrun][0] = 0; runs[nrun][1] = hi; wrap[nrun++] = 0;
+      } else if (hi >= nx) {
+        if (lo <= nx - 1) { runs[nrun][0] = lo; runs[nrun][1] = nx - 1; wrap[nrun++] = 0; }
+        runs[nrun][0] = 0; runs[nrun][1] = 0; wrap[nrun++] = 1;
+      } else {
+        runs[nrun][0] = lo; runs[nrun][1] = hi; wrap[nrun++] = 0;
+      }
+    } else {
+      long long const a0 = lo < 0 ? 0 : lo, a1 = hi >= nx ? nx - 1 : hi;
+      if (a0 <= a1) { runs[nrun][0] = a0; runs[nrun][1] = a1; wrap[nrun++] = 0; }
+    }
+    for (int r = 0; r < nrun; ++r) {
+      double shift[3] = {0, 0, 0};
+      if (g.periodic) {
+        shift[0] = wrap[r] * box.l[0] + wy * box.xy_ly + wz * box.xz_lz;
+        shift[1] = wy * box.l[1] + wz * box.yz_lz;
+        shift[2] = wz * box.l[2];
+      }
+      long long const b0 = start[base + runs[r][0]], b1 = start[base + runs[r][1] + 1];
+      for (long long a = start[c]; a < start[c + 1]; ++a) scan_range(q, a, b0, b1, shift, sink);
+    }
+    if (row == 0) {
+      double const zero[3] = {0, 0, 0};
+      for (long long a = start[c]; a < start[c + 1]; ++a)
+        scan_range(q, a, a + 1, start[c + 1], zero, sink);
+    }
+    if (sink.status != kOk) return;
+  }
+}
+
+// Cell c's pairs, general path (any grid): the neighbour cells of higher
+// index, each pair through its exact r12.
+void scan_cell_general(Sorted const &q, long long c, double rho, CandidateSink &sink) noexcept {
+  CellGrid const &g = q.grid;
+  long long k[3];
+  for (int d = 0; d < 3; ++d) k[d] = stencil(g, d, rho);
+  long long const cc[3] = {c % g.n[0], (c / g.n[0]) % g.n[1], c / (g.n[0] * g.n[1])};
+  long long const *start = q.start.data;
+  for (long long a = start[c]; a < start[c + 1] && sink.status == kOk; ++a) {
+    double const ra = q.rad.data[a];
+    for_each_neighbour_cell(g, cc, k, [&](long long c2) noexcept {
+      if (c2 < c) return;
+      for (long long b = c2 == c ? a + 1 : start[c2]; b < start[c2 + 1]; ++b) {
+        double d[3];
+        pair_r12(g.box, q.centre.data + 3 * a, q.centre.data + 3 * b, d);
+        if (spheres_apart(d, ra + q.rad.data[b])) continue;
+        sink.pair(a, b, d, true, ra + q.rad.data[b]);
+      }
+    });
+  }
+}
+
+}  // namespace
+
 Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacity,
                    long long *i_out, long long *j_out, double *mu2_out, long long &count,
                    long long *examined) noexcept {
@@ -446,44 +701,14 @@ Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacit
     if (examined) examined[0] = examined[1] = 0;
     return kOk;
   }
-  // The query's grid and the particles sorted by cell (counting sort,
-  // ascending index within a cell).
-  double const rho = 2 * s * scene.radius_max * (1 + 4 * kMargin);
-  double lo[3], hi[3];
-  centre_bounds(n, scene.centres, lo, hi);
-  CellGrid grid;
-  cell_grid_init(grid, box, lo, hi, rho, max_cells_for(n));
-  long long const cells = grid.cells;
-  Buffer<long long> start, cell_of, order;
-  Buffer<double> pos, rad, qscaled;
-  if (!start.reserve(cells + 1) || !cell_of.reserve(n) || !order.reserve(n) ||
-      !pos.reserve(3 * n) || !rad.reserve(n) || (scaled && !qscaled.reserve(6 * n)))
-    return kNoMemory;
-  for (long long c = 0; c <= cells; ++c) start.data[c] = 0;
-  for (long long i = 0; i < n; ++i) {
-    cell_of.data[i] = cell_of_point(grid, scene.centres + 3 * i);
-    ++start.data[cell_of.data[i] + 1];
-  }
-  for (long long c = 0; c < cells; ++c) start.data[c + 1] += start.data[c];
-  {
-    Buffer<long long> fill;
-    if (!fill.reserve(cells)) return kNoMemory;
-    std::memcpy(fill.data, start.data, static_cast<size_t>(cells) * sizeof(long long));
-    for (long long i = 0; i < n; ++i) order.data[fill.data[cell_of.data[i]]++] = i;
-  }
   double const radius_scale = s * (1 + 4 * kMargin);
-  for (long long k = 0; k < n; ++k) {
-    long long const i = order.data[k];
-    for (int d = 0; d < 3; ++d) pos.data[3 * k + d] = scene.centres[3 * i + d];
-    rad.data[k] = scene.radius[i] * radius_scale;
-  }
-  double const *qv = scene.q;
-  if (scaled) {
-    for (long long k = 0; k < 6 * n; ++k) qscaled.data[k] = s2 * scene.q[k];
-    qv = qscaled.data;
-  }
-  long long kstencil[3];
-  for (int d = 0; d < 3; ++d) kstencil[d] = stencil(grid, d, rho);
+  double const rho = 2 * scene.radius_max * radius_scale * (1 + kMargin);
+  Sorted sorted;
+  Status const sort_status = sort_by_cell(scene, rho, radius_scale, s2, sorted);
+  if (sort_status != kOk) return sort_status;
+  CellGrid const &grid = sorted.grid;
+  long long const cells = grid.cells;
+  bool const fast = !grid.periodic || (grid.n[0] >= 3 && grid.n[1] >= 3 && grid.n[2] >= 3);
 
   int const nt = threads_for(nthreads, cells);
   Buffer<PairOut> *results = allocate<Buffer<PairOut>>(nt);
@@ -491,10 +716,6 @@ Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacit
   for (int t = 0; t < nt; ++t) new (&results[t]) Buffer<PairOut>();
   Status status = kOk;
   long long spheres_total = 0, examined_total = 0;
-  long long const *ord = order.data;
-  long long const *cs = start.data;
-  double const *ps = pos.data;
-  double const *rs = rad.data;
   bool const want_mu2 = mu2_out != nullptr;
   constexpr long long kBlock = 256;
 #pragma omp parallel num_threads(nt) reduction(+ : spheres_total, examined_total)
@@ -504,64 +725,24 @@ Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacit
 #else
     int const tid = 0;
 #endif
-    Buffer<PairOut> &out = results[tid];
     Buffer<Candidate> cand;
-    Status local = cand.reserve(kBlock + 64) ? kOk : kNoMemory;
-#pragma omp for schedule(dynamic, 8)
+    CandidateSink sink{scene, sorted, want_mu2, cand, results[tid]};
+    if (!cand.reserve(kBlock)) sink.status = kNoMemory;
+#pragma omp for schedule(dynamic, 16)
     for (long long c = 0; c < cells; ++c) {
-      if (local != kOk) continue;
-      long long cc[3] = {c % grid.n[0], (c / grid.n[0]) % grid.n[1], c / (grid.n[0] * grid.n[1])};
-      for (long long a = cs[c]; a < cs[c + 1] && local == kOk; ++a) {
-        long long const ia = ord[a];
-        double const *pa = ps + 3 * a;
-        double const ra = rs[a];
-        for_each_neighbour_cell(grid, cc, kstencil, [&](long long c2) noexcept {
-          if (c2 < c) return;
-          long long const b0 = c2 == c ? a + 1 : cs[c2];
-          for (long long b = b0; b < cs[c2 + 1]; ++b) {
-            long long const ib = ord[b];
-            double r[3];
-            long long i, j;
-            if (ia < ib) {
-              i = ia;
-              j = ib;
-              pair_r12(box, pa, ps + 3 * b, r);
-            } else {
-              i = ib;
-              j = ia;
-              pair_r12(box, ps + 3 * b, pa, r);
-            }
-            if (spheres_apart(r, ra + rs[b])) continue;
-            ++spheres_total;
-            if (plane_separates(r, qv + 6 * i, qv + 6 * j)) continue;
-            ++examined_total;
-            Candidate &k = cand.data[cand.size++];
-            k.i = i;
-            k.j = j;
-            k.r[0] = r[0];
-            k.r[1] = r[1];
-            k.r[2] = r[2];
-            if (cand.size == cand.capacity) {
-              local = narrow(cand.data, cand.size, qv, scene.q, want_mu2, out);
-              cand.size = 0;
-              if (local != kOk) return;
-            }
-          }
-        });
-        if (local == kOk && cand.size >= kBlock) {
-          local = narrow(cand.data, cand.size, qv, scene.q, want_mu2, out);
-          cand.size = 0;
-        }
-      }
+      if (sink.status != kOk) continue;
+      if (fast) scan_cell(sorted, c, sink);
+      else scan_cell_general(sorted, c, rho, sink);
     }
-    if (local == kOk && cand.size > 0)
-      local = narrow(cand.data, cand.size, qv, scene.q, want_mu2, out);
-    if (local != kOk) {
+    sink.flush();
+    spheres_total += sink.spheres;
+    examined_total += sink.examined;
+    if (sink.status != kOk) {
 #pragma omp critical(pw85_scene_status)
       {
         // The error of lowest code wins, so the status is the same for
         // every thread count when one kind of error occurs.
-        if (status == kOk || local < status) status = local;
+        if (status == kOk || sink.status < status) status = sink.status;
       }
     }
   }
