@@ -140,14 +140,13 @@ static void free_config(config *cf) {
   free(cf->quat);
 }
 
-/* The pairs whose bounding spheres (the documented radius bound of the
- * pw85_scene_* calls) intersect, by a plain cell list, as per-pair arrays
- * (r12 the minimum image in the orthorhombic box). Returns their count. */
+/* The pairs whose bounding spheres (radius: the largest semi-axis, known
+ * here) intersect, by a plain cell list, as per-pair arrays (r12 the minimum
+ * image in the orthorhombic box). Returns their count. */
 static double bound_radius(double const q[6]) {
-  double const a[6] = {fabs(q[0]), fabs(q[1]), fabs(q[2]), fabs(q[3]), fabs(q[4]), fabs(q[5])};
-  double const r0 = a[0] + a[1] + a[2], r1 = a[1] + a[3] + a[4], r2 = a[2] + a[4] + a[5];
-  double g = fmax(r0, fmax(r1, r2));
-  return sqrt(fmin(g, a[0] + a[3] + a[5]));
+  double radii[3], rot[9];
+  pw85_ellipsoid_axes(q, radii, rot, NULL);
+  return fmax(radii[0], fmax(radii[1], radii[2]));
 }
 
 static long long sphere_pairs(config const *cf, double **r12, double **q1, double **q2) {

@@ -42,12 +42,32 @@ inline void fractional(scene_box::Box const &b, double const x[3], double f[3]) 
   f[0] = (x[0] - b.xy * x[1] + (b.xy * b.yz - b.xz) * x[2]) * b.inv_l[0];
 }
 
+// floor(x) for |x| < 2^52 without the library call baseline x86-64 makes
+// of std::floor (x itself beyond, and for NaN).
+inline double floor_small(double x) noexcept {
+  if (!(std::fabs(x) < 0x1p52)) return x;
+  double const t = static_cast<double>(static_cast<long long>(x));
+  return t > x ? t - 1.0 : t;
+}
+
+// Cell coordinates of unwrapped fractional coordinates f (periodic grid).
+inline void cell_coords_fractional(CellGrid const &g, double const f_in[3], long long c[3]) noexcept {
+  for (int d = 0; d < 3; ++d) {
+    double const f = f_in[d] - floor_small(f_in[d]);
+    long long k = static_cast<long long>(f * static_cast<double>(g.n[d]));
+    if (k < 0) k = 0;
+    if (k >= g.n[d]) k = g.n[d] - 1;
+    c[d] = k;
+  }
+}
+
 // Cell index of point x along each axis.
 inline void cell_coords(CellGrid const &g, double const x[3], long long c[3]) noexcept {
   double f[3];
   if (g.periodic) {
     fractional(g.box, x, f);
-    for (int d = 0; d < 3; ++d) f[d] -= std::floor(f[d]);
+    cell_coords_fractional(g, f, c);
+    return;
   } else {
     for (int d = 0; d < 3; ++d) {
       f[d] = (x[d] - g.lo[d]) * g.inv_ext[d];
@@ -118,9 +138,10 @@ inline void for_each_neighbour_cell(CellGrid const &g, long long const c[3],
 }
 
 // Sets up g for points closer than rho to be found with a stencil of
-// half-width 1: cells at least rho wide (plus kSlack), at most max_cells
-// cells. Periodic: box b; open: the bounding box [lo, hi] of the points.
+// half-width split: cells at least rho / split wide (plus kSlack), at most
+// max_cells cells (fewer, wider cells then). Periodic: box b; open: the
+// bounding box [lo, hi] of the points.
 void cell_grid_init(CellGrid &g, scene_box::Box const &b, double const lo[3],
-                    double const hi[3], double rho, long long max_cells) noexcept;
+                    double const hi[3], double rho, long long max_cells, int split) noexcept;
 
 }  // namespace pw85

@@ -24,6 +24,7 @@
 #endif
 
 #include "common/fp.hpp"
+#include "common/lanes.hpp"
 #include "common/orientation.hpp"
 #include "common/screen.hpp"
 #include "common/sym3.hpp"
@@ -272,12 +273,17 @@ void centre_bounds(long long n, double const *c, double lo[3], double hi[3]) noe
     }
 }
 
-inline long long max_cells_for(long long n) noexcept { return 2 * n + 8; }
+inline long long max_cells_for(long long n) noexcept { return 4 * n + 8; }
+
+// Cells per interaction range of the pairs queries: cells rho / kSplit wide,
+// a stencil of (2 kSplit + 1)^3 cells, volume (2 kSplit + 1)^3 / kSplit^3
+// rho^3 scanned around each particle (27 rho^3 for 1, 15.6 rho^3 for 2).
+constexpr int kSplit = 1;
 
 }  // namespace
 
 void cell_grid_init(CellGrid &g, Box const &b, double const lo[3], double const hi[3],
-                    double rho, long long max_cells) noexcept {
+                    double rho, long long max_cells, int split) noexcept {
   g = CellGrid{};
   g.box = b;
   g.periodic = b.periodic;
@@ -299,7 +305,7 @@ void cell_grid_init(CellGrid &g, Box const &b, double const lo[3], double const 
   for (int d = 0; d < 3; ++d) {
     nd[d] = 1;
     if (g.width[d] > 0.0) {
-      double const x = std::floor(1.0 / (rho / g.width[d] + 2 * kSlack));
+      double const x = std::floor(split / (rho / g.width[d] + 2 * kSlack));
       if (x > 1) nd[d] = x;
     }
   }
@@ -390,7 +396,7 @@ Status scene_assign(Scene &scene, long long n, double const *centres, double con
   double lo[3], hi[3];
   centre_bounds(n, centres, lo, hi);
   CellGrid grid;
-  cell_grid_init(grid, box, lo, hi, 2 * rmax * (1 + kMargin), max_cells_for(n));
+  cell_grid_init(grid, box, lo, hi, 2 * rmax * (1 + kMargin), max_cells_for(n), 1);
   // Storage: kept when large enough, else new arrays (the old ones stay
   // until all the new ones exist).
   Scene next_scene = scene;
@@ -458,6 +464,9 @@ namespace {
 // box (periodic: H (f - floor f), f the fractional coordinates; open: the
 // centre), rad its bounding radius scaled by s; centre and q its centre and
 // matrix (times s^2), in the sorted order for locality.
+// Entries readable past the end of the sorted arrays (scan_range's lanes).
+constexpr int kScanPad = 4;
+
 struct Sorted {
   CellGrid grid;
   Buffer<long long> start, order;
@@ -473,32 +482,44 @@ Status sort_by_cell(Scene const &scene, double rho_scaled, double radius_scale, 
   long long const n = scene.n;
   Box const &box = scene.box;
   double lo[3], hi[3];
-  centre_bounds(n, scene.centres, lo, hi);
-  // Largest |f| (periodic): the wrap error grows with it.
-  double fmax = 0;
-  double hsum = 0;
-  if (box.periodic) {
-    for (long long i = 0; i < n; ++i) {
-      double f[3];
-      fractional(box, scene.centres + 3 * i, f);
-      for (int d = 0; d < 3; ++d)
-        if (std::fabs(f[d]) > fmax) fmax = std::fabs(f[d]);
-    }
-    hsum = box.l[0] + std::fabs(box.xy_ly) + std::fabs(box.xz_lz) + box.l[1] +
-           std::fabs(box.yz_lz) + box.l[2];
-    q.wrap_error = 64 * kU * (fmax + 2) * hsum;
-  }
-  cell_grid_init(q.grid, box, lo, hi, rho_scaled + 2 * q.wrap_error, max_cells_for(n));
-  long long const cells = q.grid.cells;
+  Buffer<double> frac;
   Buffer<long long> cell_of, fill;
-  if (!q.start.reserve(cells + 1) || !q.order.reserve(n) || !cell_of.reserve(n) ||
-      !fill.reserve(cells) || !q.wx.reserve(n) || !q.wy.reserve(n) || !q.wz.reserve(n) ||
-      !q.rad.reserve(n) || !q.centre.reserve(3 * n) || !q.q.reserve(6 * n))
+  if (!cell_of.reserve(n) || (box.periodic && !frac.reserve(3 * n))) return kNoMemory;
+  if (box.periodic) {
+    // Fractional coordinates, once; the wrap error grows with the largest.
+    double fmax = 0;
+    for (long long i = 0; i < n; ++i) {
+      double *f = frac.data + 3 * i;
+      fractional(box, scene.centres + 3 * i, f);
+      for (int d = 0; d < 3; ++d) {
+        double const a = std::fabs(f[d]);
+        fmax = a > fmax ? a : fmax;
+      }
+    }
+    double const hsum = box.l[0] + std::fabs(box.xy_ly) + std::fabs(box.xz_lz) + box.l[1] +
+                        std::fabs(box.yz_lz) + box.l[2];
+    q.wrap_error = 64 * kU * (fmax + 2) * hsum;
+    lo[0] = lo[1] = lo[2] = hi[0] = hi[1] = hi[2] = 0;
+  } else {
+    centre_bounds(n, scene.centres, lo, hi);
+  }
+  cell_grid_init(q.grid, box, lo, hi, rho_scaled + 2 * q.wrap_error, max_cells_for(n), kSplit);
+  if (q.grid.periodic && (q.grid.n[0] < 2 * kSplit + 1 || q.grid.n[1] < 2 * kSplit + 1 ||
+                          q.grid.n[2] < 2 * kSplit + 1))
+    cell_grid_init(q.grid, box, lo, hi, rho_scaled + 2 * q.wrap_error, max_cells_for(n), 1);
+  long long const cells = q.grid.cells;
+  if (!q.start.reserve(cells + 1) || !q.order.reserve(n) || !fill.reserve(cells) ||
+      !q.wx.reserve(n + kScanPad) || !q.wy.reserve(n + kScanPad) ||
+      !q.wz.reserve(n + kScanPad) || !q.rad.reserve(n + kScanPad) ||
+      !q.centre.reserve(3 * n) || !q.q.reserve(6 * n))
     return kNoMemory;
   long long *start = q.start.data;
   for (long long c = 0; c <= cells; ++c) start[c] = 0;
   for (long long i = 0; i < n; ++i) {
-    cell_of.data[i] = cell_of_point(q.grid, scene.centres + 3 * i);
+    long long cc[3];
+    if (box.periodic) cell_coords_fractional(q.grid, frac.data + 3 * i, cc);
+    else cell_coords(q.grid, scene.centres + 3 * i, cc);
+    cell_of.data[i] = cell_id(q.grid, cc);
     ++start[cell_of.data[i] + 1];
   }
   for (long long c = 0; c < cells; ++c) start[c + 1] += start[c];
@@ -510,8 +531,7 @@ Status sort_by_cell(Scene const &scene, double rho_scaled, double radius_scale, 
     double w[3] = {c[0], c[1], c[2]};
     if (box.periodic) {
       double f[3];
-      fractional(box, c, f);
-      for (int d = 0; d < 3; ++d) f[d] -= std::floor(f[d]);
+      for (int d = 0; d < 3; ++d) f[d] = frac.data[3 * i + d] - floor_small(frac.data[3 * i + d]);
       w[0] = f[0] * box.l[0] + f[1] * box.xy_ly + f[2] * box.xz_lz;
       w[1] = f[1] * box.l[1] + f[2] * box.yz_lz;
       w[2] = f[2] * box.l[2];
@@ -523,6 +543,7 @@ Status sort_by_cell(Scene const &scene, double rho_scaled, double radius_scale, 
     for (int d = 0; d < 3; ++d) q.centre.data[3 * k + d] = c[d];
     for (int t = 0; t < 6; ++t) q.q.data[6 * k + t] = s2 * scene.q[6 * i + t];
   }
+  for (long long k = n; k < n + kScanPad; ++k) q.wx.data[k] = q.wy.data[k] = q.wz.data[k] = q.rad.data[k] = 0;
   return kOk;
 }
 
@@ -581,72 +602,99 @@ inline void scan_range(Sorted const &q, long long a, long long b0, long long b1,
   double const ra = q.rad.data[a] + q.wrap_error;
   double const *wx = q.wx.data, *wy = q.wy.data, *wz = q.wz.data, *rad = q.rad.data;
   bool const exact = !q.grid.periodic;
-  for (long long b = b0; b < b1; ++b) {
-    double const dx = wx[b] - ax, dy = wy[b] - ay, dz = wz[b] - az;
-    double const reach = ra + rad[b];
-    if (dx * dx + dy * dy + dz * dz >= reach * reach * (1 + kMargin)) continue;
-    double const d[3] = {dx, dy, dz};
-    sink.pair(a, b, d, exact, rad[b] + q.rad.data[a]);
+  // Branch-free first pass (most pairs fail the test, at unpredictable
+  // places): the passing b are gathered, then handled.
+  constexpr long long kChunk = 64;
+  long long hits[kChunk];
+  for (long long c0 = b0; c0 < b1; c0 += kChunk) {
+    long long const c1 = c0 + kChunk < b1 ? c0 + kChunk : b1;
+    long long const len = c1 - c0;
+    double const *px = wx + c0, *py = wy + c0, *pz = wz + c0, *pr = rad + c0;
+    // Four lanes at a time (GCC vector extensions; the arrays carry
+    // kScanPad readable entries past their end, lanes past len dropped).
+    using V = lanes::VecD<kScanPad>;
+    V const vax = {ax, ax, ax, ax}, vay = {ay, ay, ay, ay}, vaz = {az, az, az, az};
+    V const vra = {ra, ra, ra, ra};
+    int m = 0;
+    for (long long t = 0; t < len; t += kScanPad) {
+      V x, y, z, r;
+      std::memcpy(&x, px + t, sizeof x);
+      std::memcpy(&y, py + t, sizeof y);
+      std::memcpy(&z, pz + t, sizeof z);
+      std::memcpy(&r, pr + t, sizeof r);
+      V const dx = x - vax, dy = y - vay, dz = z - vaz, reach = vra + r;
+      auto const near = dx * dx + dy * dy + dz * dz < reach * reach * (1 + kMargin);
+      long long const lanes_left = len - t < kScanPad ? len - t : kScanPad;
+      for (int l = 0; l < lanes_left; ++l) {
+        hits[m] = c0 + t + l;
+        m += near[l] != 0;
+      }
+    }
+    for (int t = 0; t < m; ++t) {
+      long long const b = hits[t];
+      double const d[3] = {wx[b] - ax, wy[b] - ay, wz[b] - az};
+      sink.pair(a, b, d, exact, rad[b] + q.rad.data[a]);
+    }
   }
 }
 
-// Cell c's pairs, fast path (every periodic axis with >= 3 cells).
-void scan_cell(Sorted const &q, long long c, CandidateSink &sink) noexcept {
+// Cell c's pairs, fast path (grid of cells at least rho / split wide,
+// split = 1 or 2; every periodic axis with at least 2 split + 1 cells).
+void scan_cell(Sorted const &q, long long c, int split, CandidateSink &sink) noexcept {
   CellGrid const &g = q.grid;
   Box const &box = g.box;
   long long const nx = g.n[0], ny = g.n[1], nz = g.n[2];
   long long const x = c % nx, y = (c / nx) % ny, z = c / (nx * ny);
   long long const *start = q.start.data;
-  // Rows (dy, dz) of the half stencil: (0, 0) holds the cell itself and
-  // x + 1; (1, 0) and (-1..1, 1) hold x - 1 .. x + 1.
-  static constexpr int kRows[5][2] = {{0, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
-  for (int row = 0; row < 5; ++row) {
-    long long yy = y + kRows[row][0], zz = z + kRows[row][1];
-    int wy = 0, wz = 0;
-    if (g.periodic) {
-      if (yy < 0) { yy += ny; wy = -1; }
-      if (yy >= ny) { yy -= ny; wy = 1; }
-      if (zz >= nz) { zz -= nz; wz = 1; }
-    } else if (yy < 0 || yy >= ny || zz >= nz) {
-      continue;
-    }
-    long long const base = nx * (yy + ny * zz);
-    // Up to two runs of consecutive cells [x0, x1] with their x wrap.
-    long long runs[2][2];
-    int wrap[2] = {0, 0};
-    int nrun = 0;
-    long long const lo = row == 0 ? x + 1 : x - 1, hi = x + 1;
-    if (g.periodic) {
-      if (lo < 0) {
-        runs[nrun][0] = nx - 1; runs[nrun][1] = nx - 1; wrap[nrun++] = -1;
-        runs[nrun][0] = 0; runs[nrun][1] = hi; wrap[nrun++] = 0;
-      } else if (hi >= nx) {
-        if (lo <= nx - 1) { runs[nrun][0] = lo; runs[nrun][1] = nx - 1; wrap[nrun++] = 0; }
-        runs[nrun][0] = 0; runs[nrun][1] = 0; wrap[nrun++] = 1;
-      } else {
-        runs[nrun][0] = lo; runs[nrun][1] = hi; wrap[nrun++] = 0;
-      }
-    } else {
-      long long const a0 = lo < 0 ? 0 : lo, a1 = hi >= nx ? nx - 1 : hi;
-      if (a0 <= a1) { runs[nrun][0] = a0; runs[nrun][1] = a1; wrap[nrun++] = 0; }
-    }
-    for (int r = 0; r < nrun; ++r) {
-      double shift[3] = {0, 0, 0};
+  int const k = split;
+  // Rows (dy, dz) of the half stencil ((dz, dy, dx) > 0): (0, 0) holds the
+  // cell itself and x + 1 .. x + k; (dy > 0, 0) and (-k..k, dz > 0) hold
+  // x - k .. x + k.
+  for (int dz = 0; dz <= k; ++dz)
+    for (int dy = dz == 0 ? 0 : -k; dy <= k; ++dy) {
+      long long yy = y + dy, zz = z + dz;
+      int wy = 0, wz = 0;
       if (g.periodic) {
-        shift[0] = wrap[r] * box.l[0] + wy * box.xy_ly + wz * box.xz_lz;
-        shift[1] = wy * box.l[1] + wz * box.yz_lz;
-        shift[2] = wz * box.l[2];
+        if (yy < 0) { yy += ny; wy = -1; }
+        if (yy >= ny) { yy -= ny; wy = 1; }
+        if (zz >= nz) { zz -= nz; wz = 1; }
+      } else if (yy < 0 || yy >= ny || zz >= nz) {
+        continue;
       }
-      long long const b0 = start[base + runs[r][0]], b1 = start[base + runs[r][1] + 1];
-      for (long long a = start[c]; a < start[c + 1]; ++a) scan_range(q, a, b0, b1, shift, sink);
+      long long const base = nx * (yy + ny * zz);
+      bool const own = dy == 0 && dz == 0;
+      long long const lo = own ? x + 1 : x - k, hi = x + k;
+      // Up to three runs of consecutive cells [x0, x1] with their x wrap.
+      long long runs[3][2];
+      int wrap[3];
+      int nrun = 0;
+      if (g.periodic) {
+        if (lo < 0) { runs[nrun][0] = lo + nx; runs[nrun][1] = nx - 1; wrap[nrun++] = -1; }
+        long long const m0 = lo < 0 ? 0 : lo, m1 = hi >= nx ? nx - 1 : hi;
+        if (m0 <= m1) { runs[nrun][0] = m0; runs[nrun][1] = m1; wrap[nrun++] = 0; }
+        if (hi >= nx) { runs[nrun][0] = 0; runs[nrun][1] = hi - nx; wrap[nrun++] = 1; }
+      } else {
+        long long const a0 = lo < 0 ? 0 : lo, a1 = hi >= nx ? nx - 1 : hi;
+        if (a0 <= a1) { runs[nrun][0] = a0; runs[nrun][1] = a1; wrap[nrun++] = 0; }
+      }
+      for (int r = 0; r < nrun; ++r) {
+        double shift[3] = {0, 0, 0};
+        if (g.periodic) {
+          shift[0] = wrap[r] * box.l[0] + wy * box.xy_ly + wz * box.xz_lz;
+          shift[1] = wy * box.l[1] + wz * box.yz_lz;
+          shift[2] = wz * box.l[2];
+        }
+        long long const b0 = start[base + runs[r][0]], b1 = start[base + runs[r][1] + 1];
+        if (b0 == b1) continue;
+        for (long long a = start[c]; a < start[c + 1]; ++a) scan_range(q, a, b0, b1, shift, sink);
+      }
+      if (own) {
+        double const zero[3] = {0, 0, 0};
+        for (long long a = start[c]; a < start[c + 1]; ++a)
+          scan_range(q, a, a + 1, start[c + 1], zero, sink);
+      }
+      if (sink.status != kOk) return;
     }
-    if (row == 0) {
-      double const zero[3] = {0, 0, 0};
-      for (long long a = start[c]; a < start[c + 1]; ++a)
-        scan_range(q, a, a + 1, start[c + 1], zero, sink);
-    }
-    if (sink.status != kOk) return;
-  }
 }
 
 // Cell c's pairs, general path (any grid): the neighbour cells of higher
@@ -708,7 +756,9 @@ Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacit
   if (sort_status != kOk) return sort_status;
   CellGrid const &grid = sorted.grid;
   long long const cells = grid.cells;
-  bool const fast = !grid.periodic || (grid.n[0] >= 3 && grid.n[1] >= 3 && grid.n[2] >= 3);
+  bool const fast = !grid.periodic || (grid.n[0] >= 2 * kSplit + 1 &&
+                                       grid.n[1] >= 2 * kSplit + 1 &&
+                                       grid.n[2] >= 2 * kSplit + 1);
 
   int const nt = threads_for(nthreads, cells);
   Buffer<PairOut> *results = allocate<Buffer<PairOut>>(nt);
@@ -731,7 +781,7 @@ Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacit
 #pragma omp for schedule(dynamic, 16)
     for (long long c = 0; c < cells; ++c) {
       if (sink.status != kOk) continue;
-      if (fast) scan_cell(sorted, c, sink);
+      if (fast) scan_cell(sorted, c, kSplit, sink);
       else scan_cell_general(sorted, c, rho, sink);
     }
     sink.flush();
