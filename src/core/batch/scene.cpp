@@ -72,6 +72,7 @@ T *allocate(long long n) noexcept {
 // Relative margin of the bounding radii and of the broad-phase comparisons
 // (far above the rounding errors, far below any physical scale).
 constexpr double kMargin = 0x1p-40;
+constexpr double kMaxDouble = 0x1.fffffffffffffp+1023;
 
 // Largest |coordinate| of a centre in a scene without a box.
 constexpr double kMaxOpenCoordinate = 0x1p500;
@@ -153,40 +154,38 @@ inline bool spheres_apart(double const r[3], double reach) noexcept {
 
 // Upper bound of n^T Q n for a positive definite Q: the computed value plus
 // a bound of its rounding error, 32 u sum_a n_a^2 Q_aa (>= gamma_6 sum_ab
-// |n_a| |Q_ab| |n_b|, as |Q_ab| <= (Q_aa + Q_bb) / 2).
-inline double support2_upper(double const *q, double const n[3]) noexcept {
-  double const a0 = q[0] * n[0] + q[1] * n[1] + q[2] * n[2];
-  double const a1 = q[1] * n[0] + q[3] * n[1] + q[4] * n[2];
-  double const a2 = q[2] * n[0] + q[4] * n[1] + q[5] * n[2];
-  double const h = n[0] * a0 + n[1] * a1 + n[2] * a2;
-  double const diag = q[0] * n[0] * n[0] + q[3] * n[1] * n[1] + q[5] * n[2] * n[2];
-  double const up = h + 32 * kU * diag;
-  return up > 0.0 ? up : 0.0;
+// |n_a| |Q_ab| |n_b|, as |Q_ab| <= (Q_aa + Q_bb) / 2). T: double, or a
+// vector of doubles (one pair per lane).
+template <class T>
+PW85_ALWAYS_INLINE T support2_upper(T const q[6], T const n[3]) noexcept {
+  T const a0 = q[0] * n[0] + q[1] * n[1] + q[2] * n[2];
+  T const a1 = q[1] * n[0] + q[3] * n[1] + q[4] * n[2];
+  T const a2 = q[2] * n[0] + q[4] * n[1] + q[5] * n[2];
+  T const h = n[0] * a0 + n[1] * a1 + n[2] * a2;
+  T const diag = q[0] * n[0] * n[0] + q[3] * n[1] * n[1] + q[5] * n[2] * n[2];
+  return lanes::vmax(h + 32 * kU * diag, T{} + 0.0);
 }
 
-// (S1): true only when the plane of normal n = adj(qa + qb) r separates
-// the ellipsoids (mu^2 >= 1) for every r12 within r_error of r (each
-// component), with every rounding error bounded. Cheap sufficient test
-// first: |n . r|^2 >= 2 (h_a^2 + h_b^2) >= (h_a + h_b)^2.
-inline bool plane_separates(double const r[3], double const *qa, double const *qb,
-                            double r_error = 0.0) noexcept {
-  double const a00 = qa[0] + qb[0], a01 = qa[1] + qb[1], a02 = qa[2] + qb[2];
-  double const a11 = qa[3] + qb[3], a12 = qa[4] + qb[4], a22 = qa[5] + qb[5];
-  double const c00 = a11 * a22 - a12 * a12, c01 = a02 * a12 - a01 * a22;
-  double const c02 = a01 * a12 - a02 * a11, c11 = a00 * a22 - a02 * a02;
-  double const c12 = a01 * a02 - a00 * a12, c22 = a00 * a11 - a01 * a01;
-  double const n[3] = {c00 * r[0] + c01 * r[1] + c02 * r[2], c01 * r[0] + c11 * r[1] + c12 * r[2],
-                       c02 * r[0] + c12 * r[1] + c22 * r[2]};
-  double const nr = n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
-  double const nr_abs =
-      std::fabs(n[0] * r[0]) + std::fabs(n[1] * r[1]) + std::fabs(n[2] * r[2]);
-  double const n_abs = std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2]);
-  double const lhs = std::fabs(nr) - 8 * kU * nr_abs - n_abs * r_error * (1 + 8 * kU);
-  if (!(lhs > 0.0) || !std::isfinite(lhs)) return false;
-  double const ha = support2_upper(qa, n), hb = support2_upper(qb, n);
-  double const lhs2 = lhs * lhs;
-  if (lhs2 >= 2 * (ha + hb) * (1 + 8 * kU) && std::isfinite(lhs2)) return true;
-  return lhs >= (std::sqrt(ha) + std::sqrt(hb)) * (1 + 8 * kU);
+// (S1): true (each lane: a true mask) only when the plane of normal n =
+// adj(qa + qb) r separates the ellipsoids (mu^2 >= 1) for every r12 within
+// r_error of r (each component), every rounding error bounded.
+template <class T>
+PW85_ALWAYS_INLINE auto plane_separates(T const r[3], T const qa[6], T const qb[6],
+                                        T r_error) noexcept {
+  T const a00 = qa[0] + qb[0], a01 = qa[1] + qb[1], a02 = qa[2] + qb[2];
+  T const a11 = qa[3] + qb[3], a12 = qa[4] + qb[4], a22 = qa[5] + qb[5];
+  T const c00 = a11 * a22 - a12 * a12, c01 = a02 * a12 - a01 * a22;
+  T const c02 = a01 * a12 - a02 * a11, c11 = a00 * a22 - a02 * a02;
+  T const c12 = a01 * a02 - a00 * a12, c22 = a00 * a11 - a01 * a01;
+  T const n[3] = {c00 * r[0] + c01 * r[1] + c02 * r[2], c01 * r[0] + c11 * r[1] + c12 * r[2],
+                  c02 * r[0] + c12 * r[1] + c22 * r[2]};
+  T const nr = n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
+  T const nr_abs = lanes::vabs(n[0] * r[0]) + lanes::vabs(n[1] * r[1]) + lanes::vabs(n[2] * r[2]);
+  T const n_abs = lanes::vabs(n[0]) + lanes::vabs(n[1]) + lanes::vabs(n[2]);
+  T const lhs = lanes::vabs(nr) - 8 * kU * nr_abs - n_abs * r_error * (1 + 8 * kU);
+  T const rhs = (lanes::vsqrt(support2_upper(qa, n)) + lanes::vsqrt(support2_upper(qb, n))) *
+                (1 + 8 * kU);
+  return (lhs > 0.0) & (lhs >= rhs) & (lhs <= kMaxDouble);
 }
 
 // pw85_overlap for arguments already checked (finite, pivots of Q positive).
@@ -562,13 +561,10 @@ struct CandidateSink {
   long long spheres = 0, examined = 0;
   Status status = kOk;
 
-  // The pair of sorted particles a, b, d their separation (within
-  // sorted.wrap_error of r12 = c_b - c_a or its minimum image, exact when
-  // d_exact), reach their radii sum.
-  void pair(long long a, long long b, double const d[3], bool d_exact, double reach) noexcept {
-    ++spheres;
-    double const *qa = sorted.q.data + 6 * a, *qb = sorted.q.data + 6 * b;
-    if (plane_separates(d, qa, qb, d_exact ? 0.0 : sorted.wrap_error)) return;
+  // The pair of sorted particles a, b that the plane (S1) does not
+  // separate, reach their radii sum: its exact r12, the sphere test on it,
+  // then the exact predicate.
+  void candidate(long long a, long long b, double reach) noexcept {
     long long const ia = sorted.order.data[a], ib = sorted.order.data[b];
     // r12 of the pair (i, j), i < j.
     bool const forward = ia < ib;
@@ -630,10 +626,15 @@ inline void scan_range(Sorted const &q, long long a, long long b0, long long b1,
         m += near[l] != 0;
       }
     }
+    // (S1) on the passing pairs (qa the same for all).
+    sink.spheres += m;
+    double const *qa = q.q.data + 6 * a;
+    double const rerr = exact ? 0.0 : q.wrap_error;
     for (int t = 0; t < m; ++t) {
       long long const b = hits[t];
       double const d[3] = {wx[b] - ax, wy[b] - ay, wz[b] - az};
-      sink.pair(a, b, d, exact, rad[b] + q.rad.data[a]);
+      if (!plane_separates(d, qa, q.q.data + 6 * b, rerr))
+        sink.candidate(a, b, rad[b] + q.rad.data[a]);
     }
   }
 }
@@ -713,7 +714,9 @@ void scan_cell_general(Sorted const &q, long long c, double rho, CandidateSink &
         double d[3];
         pair_r12(g.box, q.centre.data + 3 * a, q.centre.data + 3 * b, d);
         if (spheres_apart(d, ra + q.rad.data[b])) continue;
-        sink.pair(a, b, d, true, ra + q.rad.data[b]);
+        ++sink.spheres;
+        if (plane_separates(d, q.q.data + 6 * a, q.q.data + 6 * b, 0.0)) continue;
+        sink.candidate(a, b, ra + q.rad.data[b]);
       }
     });
   }
@@ -889,7 +892,7 @@ Status scene_test_move(Scene const &scene, long long i, double const centre[3],
       if (spheres_apart(r, rt + scene.radius[b])) continue;
       double const *qa = i < b ? q : scene.q + 6 * b;
       double const *qb = i < b ? scene.q + 6 * b : q;
-      if (plane_separates(r, qa, qb)) continue;
+      if (plane_separates(r, qa, qb, 0.0)) continue;
       if (m == cap) {
         if (!heap.reserve(2 * cap)) {
           oom = true;
