@@ -569,14 +569,18 @@ PW85_API int pw85_contact_pairs(long long m, double const *r12, double const *q1
  * i at q[6i..6i+5]; pair k is (i, j) = (pairs[2k], pairs[2k+1]), computed
  * with r12 = c_j - c_i. box (may be NULL: no periodicity) is a periodic box
  * in the HOOMD/GSD convention {Lx, Ly, Lz, xy, xz, yz}: lattice vectors
- * (Lx, 0, 0), (xy Ly, Ly, 0), (xz Lz, yz Lz, Lz). With a box, r12 is the
- * image of c_j - c_i given by the triclinic wrap of HOOMD's Box::minImage
+ * (Lx, 0, 0), (xy Ly, Ly, 0), (xz Lz, yz Lz, Lz), the tilt offsets rounded
+ * to double. With a box, r12 is the image of c_j - c_i (rounded to double)
+ * given by the triclinic wrap of HOOMD's Box::minImage in exact arithmetic
  * (z, then y, then x, each by the nearest integer number of lattice vectors,
- * ties away from zero), which lies in |x| <= Lx/2, |y| <= Ly/2,
- * |z| <= Lz/2. It is the nearest image whenever the nearest image is
- * shorter than min(Lx, Ly, Lz)/2, hence for every pair that overlaps or
- * touches in some image; for longer separations in a tilted box it may be
- * another image (docs/batch.md). To keep that guarantee, a pair whose
+ * ties away from zero), each component rounded to double once; it lies in
+ * |x| <= Lx/2, |y| <= Ly/2, |z| <= Lz/2. A pair whose wrap needs a count
+ * beyond 2^50 lattice vectors along a2 when xy != 0, or along a3 when xz or
+ * yz != 0 (or overflows), fails with PW85_ERR_INVALID_ARGUMENT; without tilt
+ * any distance is reduced exactly. It is the nearest image whenever the
+ * nearest image is shorter than min(Lx, Ly, Lz)/2, hence for every pair
+ * that overlaps or touches in some image; for longer separations in a
+ * tilted box it may be another image (docs/batch.md). To keep that guarantee, a pair whose
  * bounding spheres (radius: square root of the smaller of the trace and the
  * largest Gershgorin row sum of |Q|) have radii summing to more than
  * min(Lx, Ly, Lz)/2 (less a relative 1e-9) fails with

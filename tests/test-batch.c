@@ -177,7 +177,9 @@ static void random_box(GRand *rng, double tilt, double box[6]) {
 
 /* The wrap the header documents (HOOMD's Box::minImage: z, y, x, each by
  * the nearest integer to the coordinate times 1 / L, ties away from zero),
- * written out here independently of the library's code. */
+ * written out here independently of the library's code, in floating point:
+ * the exact image where its operations are exact (centres and box on a
+ * grid: test_new_against_one_pair), within a few ulps of it elsewhere. */
 static void wrap(const double box[6], double r[3]) {
   double iz = round(r[2] * (1.0 / box[2]));
   r[2] -= box[2] * iz;
@@ -323,6 +325,12 @@ static void test_new_against_one_pair(gconstpointer data) {
   static int perm[M];
   GRand *rng = g_rand_new_with_seed(41 + tc->which);
   make_pair_arrays(&s, 21 + tc->which);
+  double box[6];
+  random_box(rng, 0.5, box);
+  if (tc->periodic) { /* on a grid of 2^-20: every operation of wrap() exact */
+    for (int i = 0; i < 3 * N; i++) s.c[i] = ldexp(round(ldexp(s.c[i], 20)), -20);
+    for (int d = 0; d < 6; d++) box[d] = ldexp(round(ldexp(box[d], 20)), -20);
+  }
   spoil(&s);
   for (int k = 0; k < M; k++) perm[k] = k;
   for (int k = M - 1; k > 0; k--) {
@@ -331,8 +339,6 @@ static void test_new_against_one_pair(gconstpointer data) {
     perm[j] = x;
   }
   permute(&s, perm, &t);
-  double box[6];
-  random_box(rng, 0.5, box);
   const double *b = tc->periodic ? box : NULL;
   size_t const sz = out_size(tc->which);
   unsigned char *exp = big_out[0], *out = big_out[1];
@@ -466,6 +472,82 @@ static void test_scene_reach(void) {
   g_assert_true(isnan(ct[0].depth) && ct[1].depth > 0.0);
   g_assert_cmpint(pw85_scene_overlap(4, c, q, NULL, 2, pairs, v, st, 1), ==, PW85_OK);
   g_assert_cmpint(v[0], ==, 1);
+}
+
+/* Boxes where a floating-point wrap goes wrong: box {1, 1, 1, t, 0, 0},
+ * t = 2^60, 2^52, 2^20, spheres q = 0x1.d7dbf487fcb92p-9 I (radius 0.06),
+ * centres 0 and (0x1.3333333333333p-2, 0x1.ccccccccccccdp-1, 0): the image
+ * is (0x1.3333333333333p-2, 0x1.ccccccccccccdp-1 - 1, 0) exactly
+ * (|r12|^2 = 0.1, mu^2 = 0.1 / 0.12^2 = 6.94); box {3, 3, 3, 0, 0, 0},
+ * spheres of radius 0.4, centres 0 and (2^53, 0, 0): 2^53 = 3 (2^53 + 1) / 3
+ * - 1, the image is (-1, 0, 0) exactly, mu^2 = 1 / 0.8^2 = 1.5625. Each
+ * scene call must give the one-pair call's bits on that image, and mu^2 the
+ * value of the formula. */
+static void test_scene_extreme_boxes(void) {
+  struct {
+    double box[6], cj[3], r12[3], q, mu2;
+  } const cases[] = {
+      {{1, 1, 1, 0x1p60, 0, 0}, {0x1.3333333333333p-2, 0x1.ccccccccccccdp-1, 0},
+       {0x1.3333333333333p-2, 0x1.ccccccccccccdp-1 - 1.0, 0}, 0x1.d7dbf487fcb92p-9, 0},
+      {{1, 1, 1, 0x1p52, 0, 0}, {0x1.3333333333333p-2, 0x1.ccccccccccccdp-1, 0},
+       {0x1.3333333333333p-2, 0x1.ccccccccccccdp-1 - 1.0, 0}, 0x1.d7dbf487fcb92p-9, 0},
+      {{1, 1, 1, 0x1p20, 0, 0}, {0x1.3333333333333p-2, 0x1.ccccccccccccdp-1, 0},
+       {0x1.3333333333333p-2, 0x1.ccccccccccccdp-1 - 1.0, 0}, 0x1.d7dbf487fcb92p-9, 0},
+      {{3, 3, 3, 0, 0, 0}, {0x1p53, 0, 0}, {-1, 0, 0}, 0.16, 1.5625},
+  };
+  for (size_t t = 0; t < sizeof cases / sizeof cases[0]; t++) {
+    double c[6] = {0, 0, 0, cases[t].cj[0], cases[t].cj[1], cases[t].cj[2]};
+    double q[12];
+    sphere_q(1.0, q);
+    for (int i = 0; i < 6; i++) q[i] *= cases[t].q;
+    for (int i = 0; i < 6; i++) q[6 + i] = q[i];
+    long long const pair[2] = {0, 1};
+    double const *r = cases[t].r12;
+    int v = -9, st = -9;
+    g_assert_cmpint(pw85_scene_overlap(2, c, q, cases[t].box, 1, pair, &v, &st, 1), ==, PW85_OK);
+    g_assert_cmpint(v, ==, pw85_overlap(r, q, q + 6));
+    g_assert_cmpint(v, ==, 0);
+    pw85_result res, one;
+    g_assert_cmpint(pw85_scene_contact_function(2, c, q, cases[t].box, 1, pair,
+                                                PW85_METHOD_DEFAULT, &res, &st, 1), ==,
+                    pw85_contact_function_method(r, q, q + 6, PW85_METHOD_DEFAULT, &one));
+    g_assert_true(memcmp(&res, &one, sizeof res) == 0);
+    double const mu2 = cases[t].mu2 > 0 ? cases[t].mu2
+                                        : (r[0] * r[0] + r[1] * r[1]) / (4.0 * cases[t].q);
+    g_assert_cmpfloat(rel_error(res.mu2, mu2), <=, 1e-14);
+    pw85_contact_t ct, ct1;
+    g_assert_cmpint(pw85_scene_contact(2, c, q, cases[t].box, 1, pair, &ct, &st, 1), ==,
+                    pw85_contact(r, q, q + 6, &ct1));
+    g_assert_true(memcmp(&ct, &ct1, sizeof ct) == 0);
+    pw85_derivatives_t d, d1;
+    g_assert_cmpint(pw85_scene_contact_derivatives(2, c, q, cases[t].box, 1, pair, &d, &st, 1),
+                    ==, pw85_contact_derivatives(r, q, q + 6, &d1));
+    g_assert_true(memcmp(&d, &d1, sizeof d) == 0);
+  }
+}
+
+/* A tilted box where a needed count exceeds 2^50 (box.hpp): the pair fails
+ * with PW85_ERR_INVALID_ARGUMENT and NaN outputs; the same centres in the
+ * box without tilt are reduced exactly. */
+static void test_scene_count_limit(void) {
+  double c[6] = {0, 0, 0, 0.25, 0.5, 0x1p60};
+  double q[12];
+  sphere_q(0.1, q);
+  sphere_q(0.1, q + 6);
+  long long const pair[2] = {0, 1};
+  double const tilted[6] = {2, 2, 2, 0, 0.5, 0}, straight[6] = {2, 2, 2, 0, 0, 0};
+  pw85_result res;
+  int st = 0;
+  g_assert_cmpint(pw85_scene_contact_function(2, c, q, tilted, 1, pair, PW85_METHOD_DEFAULT,
+                                              &res, &st, 1), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(st, ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_true(isnan(res.mu2));
+  double const r[3] = {0.25, 0.5, 0};
+  pw85_result one;
+  g_assert_cmpint(pw85_scene_contact_function(2, c, q, straight, 1, pair, PW85_METHOD_DEFAULT,
+                                              &res, &st, 1), ==,
+                  pw85_contact_function_method(r, q, q + 6, PW85_METHOD_DEFAULT, &one));
+  g_assert_true(memcmp(&res, &one, sizeof res) == 0);
 }
 
 /* Call-level errors of the new functions: nothing written (outputs and
@@ -850,6 +932,8 @@ int main(int argc, char **argv) {
   }
   g_test_add_func("/pw85_scene_overlap/bounding-spheres", test_scene_reach);
   g_test_add_func("/pw85_scene_overlap/bad-input", test_new_bad_input);
+  g_test_add_func("/pw85_scene_contact/extreme-boxes", test_scene_extreme_boxes);
+  g_test_add_func("/pw85_scene_contact_function/count-limit", test_scene_count_limit);
   static const char *const f_names[F_COUNT] = {
     "pw85_overlap_batch", "pw85_contact_function_batch", "pw85_contact_batch",
     "pw85_overlap_pairs", "pw85_contact_function_pairs", "pw85_contact_pairs",

@@ -15,6 +15,7 @@
 #endif
 
 #include "pw85.h"
+#include "batch/box.hpp"
 #include "contact/contact.hpp"
 #include "derivatives/derivatives.hpp"
 #include "geometry/contact_geometry.hpp"
@@ -23,6 +24,8 @@
 #include "validate.hpp"
 
 using pw85::capi::fill_nan;
+using pw85::batch::Box;
+using pw85::batch::make_box;
 
 namespace {
 
@@ -437,72 +440,6 @@ void derivatives_block(long long k0, Pair pair, pw85_derivatives_t *d, int st[])
 // caller).
 inline bool valid_count(long long m, int nthreads) noexcept { return m > 0 && nthreads >= 0; }
 
-// Periodic box in the HOOMD/GSD convention {Lx, Ly, Lz, xy, xz, yz}: lattice
-// vectors a1 = (Lx, 0, 0), a2 = (xy Ly, Ly, 0), a3 = (xz Lz, yz Lz, Lz).
-struct Box {
-  bool periodic = false;
-  double l[3] = {0, 0, 0};
-  double inv_l[3] = {0, 0, 0};  // 1 / l, rounded
-  double xy_ly = 0, xz_lz = 0, yz_lz = 0;  // the tilt offsets of a2 and a3
-  // Largest admissible sum of the two bounding-sphere radii of a pair:
-  // min(Lx, Ly, Lz) / 2, less a relative 1e-9 for the rounding of the wrap
-  // and of the radius bounds (docs/batch.md).
-  double max_reach = 0;
-  double max_reach2_half = 0;  // max_reach^2 / 2
-};
-
-// A NULL box: no periodicity. Else lengths finite and > 0, tilts finite,
-// tilt offsets finite.
-bool make_box(double const *box, Box &b) noexcept {
-  if (box == nullptr) return true;
-  for (int d = 0; d < 6; ++d)
-    if (!std::isfinite(box[d])) return false;
-  if (!(box[0] > 0.0 && box[1] > 0.0 && box[2] > 0.0)) return false;
-  b.periodic = true;
-  for (int d = 0; d < 3; ++d) {
-    b.l[d] = box[d];
-    b.inv_l[d] = 1.0 / box[d];
-  }
-  b.xy_ly = box[3] * box[1];
-  b.xz_lz = box[4] * box[2];
-  b.yz_lz = box[5] * box[2];
-  if (!std::isfinite(b.xy_ly) || !std::isfinite(b.xz_lz) || !std::isfinite(b.yz_lz)) return false;
-  double const lmin = std::fmin(box[0], std::fmin(box[1], box[2]));
-  b.max_reach = 0.5 * lmin * (1.0 - 1e-9);
-  b.max_reach2_half = 0.5 * b.max_reach * b.max_reach;
-  return true;
-}
-
-// std::round (nearest integer, ties away from zero) without the library
-// call that baseline x86-64 (no SSE4.1 roundsd) makes of it: truncation by
-// conversion, then the exact remainder x - t decides. |x| >= 2^52, NaN:
-// x is returned, as std::round does.
-inline double round_away(double x) noexcept {
-  if (!(std::fabs(x) < 0x1p52)) return x;
-  double t = static_cast<double>(static_cast<long long>(x));
-  double const rem = x - t;
-  if (rem >= 0.5) t += 1.0;
-  else if (rem <= -0.5) t -= 1.0;
-  return t;
-}
-
-// The standard triclinic wrap (HOOMD's Box::minImage): z first, then y,
-// then x, each by the nearest integer (ties away from zero) to the
-// coordinate times the rounded 1 / L. The result lies in the brick
-// |x| <= Lx/2, |y| <= Ly/2, |z| <= Lz/2 (up to roundings), a fundamental
-// domain of the lattice.
-inline void min_image(Box const &b, double r[3]) noexcept {
-  double const iz = round_away(r[2] * b.inv_l[2]);
-  r[2] -= b.l[2] * iz;
-  r[1] -= b.yz_lz * iz;
-  r[0] -= b.xz_lz * iz;
-  double const iy = round_away(r[1] * b.inv_l[1]);
-  r[1] -= b.l[1] * iy;
-  r[0] -= b.xy_ly * iy;
-  double const ix = round_away(r[0] * b.inv_l[0]);
-  r[0] -= b.l[0] * ix;
-}
-
 // Upper bound of the largest eigenvalue of Q, the square of the largest
 // semi-axis of its ellipsoid: the smaller of the trace and the largest
 // Gershgorin row sum (both of |entries|). (Plain comparisons, not
@@ -529,7 +466,8 @@ inline bool too_large(Box const &box, double const *q1, double const *q2) noexce
 
 // r12 of pair k of a scene: c_j - c_i, or its minimum image in the box.
 // Returns PW85_OK, or PW85_ERR_INVALID_ARGUMENT for an index out of range or
-// (periodic box) a pair whose bounding spheres reach past max_reach. A
+// (periodic box) a pair whose bounding spheres reach past max_reach or whose
+// image minimum_image refuses (batch/box.hpp). A
 // non-finite centre or matrix is passed on to the one-pair function, which
 // reports it.
 inline int scene_r12(long long n, double const *centres, double const *q, Box const &box,
@@ -538,7 +476,8 @@ inline int scene_r12(long long n, double const *centres, double const *q, Box co
   if (!pair_r12(n, centres, pairs, k, r12, i, j)) return PW85_ERR_INVALID_ARGUMENT;
   if (!box.periodic) return PW85_OK;
   if (too_large(box, q + 6 * i, q + 6 * j)) return PW85_ERR_INVALID_ARGUMENT;
-  if (std::isfinite(r12[0]) && std::isfinite(r12[1]) && std::isfinite(r12[2])) min_image(box, r12);
+  if (std::isfinite(r12[0]) && std::isfinite(r12[1]) && std::isfinite(r12[2]))
+    return pw85::batch::minimum_image(box, r12);
   return PW85_OK;
 }
 

@@ -1,0 +1,142 @@
+// The periodic box of the scene calls and the minimum image of a centre
+// difference (docs/batch.md, "Periodic boxes").
+//
+// Box {Lx, Ly, Lz, xy, xz, yz} (HOOMD/GSD convention): lattice vectors
+// a1 = (Lx, 0, 0), a2 = (xy Ly, Ly, 0), a3 = (xz Lz, yz Lz, Lz), the tilt
+// offsets xy Ly, xz Lz, yz Lz rounded to double once (as HOOMD stores them).
+//
+// The image of a difference d is the triclinic wrap of HOOMD's
+// Box::minImage in exact arithmetic: nz = nearest integer to d_z / Lz (ties
+// away from zero), d -= nz a3; then ny from d_y / Ly, d -= ny a2; then nx
+// from d_x / Lx, d -= nx a1; each component of the exact result is rounded
+// to double once. The result lies in the brick |x| <= Lx/2, |y| <= Ly/2,
+// |z| <= Lz/2, a fundamental domain of the lattice, so it is the nearest
+// image whenever the nearest image is shorter than min(Lx, Ly, Lz)/2.
+//
+// Where the counts are needed (a count along a3 with xz or yz not zero, a
+// count along a2 with xy not zero) they must be at most 2^50 in magnitude,
+// and every intermediate sum must stay finite; beyond that the image is
+// refused (kInvalidArgument). Along a direction whose count is not needed,
+// any magnitude is reduced exactly (an IEEE remainder).
+#pragma once
+
+#include <cmath>
+
+#include "common/status.hpp"
+
+namespace pw85 {
+namespace batch {
+
+struct Box {
+  bool periodic = false;
+  bool tilted = false;  // some tilt offset is not zero
+  double length[3] = {0, 0, 0};
+  double inv_length[3] = {0, 0, 0};  // 1 / length, rounded
+  double xy_ly = 0, xz_lz = 0, yz_lz = 0;  // tilt offsets, rounded
+  // Largest admissible sum of the two bounding-sphere radii of a pair:
+  // min(Lx, Ly, Lz) / 2, less a relative 1e-9 for the rounding of the radius
+  // bounds (docs/batch.md).
+  double max_reach = 0;
+  double max_reach2_half = 0;  // max_reach^2 / 2
+};
+
+// A null box: no periodicity (b left non-periodic), true. Else true when the
+// lengths are finite and > 0, the tilts finite and the tilt offsets finite;
+// false (an invalid box) otherwise.
+inline bool make_box(double const *box, Box &b) noexcept {
+  if (box == nullptr) return true;
+  for (int d = 0; d < 6; ++d)
+    if (!std::isfinite(box[d])) return false;
+  if (!(box[0] > 0.0 && box[1] > 0.0 && box[2] > 0.0)) return false;
+  b.periodic = true;
+  for (int d = 0; d < 3; ++d) {
+    b.length[d] = box[d];
+    b.inv_length[d] = 1.0 / box[d];
+  }
+  b.xy_ly = box[3] * box[1];
+  b.xz_lz = box[4] * box[2];
+  b.yz_lz = box[5] * box[2];
+  if (!std::isfinite(b.xy_ly) || !std::isfinite(b.xz_lz) || !std::isfinite(b.yz_lz)) return false;
+  b.tilted = b.xy_ly != 0.0 || b.xz_lz != 0.0 || b.yz_lz != 0.0;
+  double const lmin = std::fmin(box[0], std::fmin(box[1], box[2]));
+  b.max_reach = 0.5 * lmin * (1.0 - 1e-9);
+  b.max_reach2_half = 0.5 * b.max_reach * b.max_reach;
+  return true;
+}
+
+// std::round (nearest integer, ties away from zero) without the library
+// call that baseline x86-64 (no SSE4.1 roundsd) makes of it: truncation by
+// conversion, then the exact remainder x - t decides. |x| >= 2^52, NaN:
+// x is returned, as std::round does.
+inline double round_away(double x) noexcept {
+  if (!(std::fabs(x) < 0x1p52)) return x;
+  double t = static_cast<double>(static_cast<long long>(x));
+  double const rem = x - t;
+  if (rem >= 0.5) t += 1.0;
+  else if (rem <= -0.5) t -= 1.0;
+  return t;
+}
+
+// The image of d in exact arithmetic (the definition at the top of this
+// file), for any d; kInvalidArgument beyond the limits stated there (d
+// unchanged). Out of line: the path of minimum_image for what its floating-
+// point wrap cannot certify.
+Status minimum_image_exact(Box const &b, double d[3]) noexcept;
+
+namespace detail {
+
+// Whether a - b is exact in floating point (the error term of Knuth's
+// two-sum is zero).
+inline bool difference_exact(double a, double b) noexcept {
+  double const s = a - b;
+  double const bb = s - a;
+  return (a - (s - bb)) + (-b - bb) == 0.0;
+}
+
+// Whether the subtraction v - n L of the wrap, n = +-1 its rounded count,
+// is exact: Sterbenz's lemma applies when L/2 <= |v| <= 2 L, and |v| <= 2 L
+// follows from |n| = 1.
+inline bool unit_step_exact(double v, double n, double len) noexcept {
+  return std::fabs(n) <= 1.0 && 2.0 * std::fabs(v) >= len;
+}
+
+}  // namespace detail
+
+// d (periodic box b, every component finite) replaced by its image
+// (definition at the top of this file); kOk, or kInvalidArgument with d
+// unchanged. The common case takes HOOMD's wrap in floating point, accepted
+// only when every one of its operations is exact (counts 0 or +-1, each
+// subtraction certified): then it is the exact image. Anything else goes to
+// minimum_image_exact.
+inline Status minimum_image(Box const &b, double d[3]) noexcept {
+  double x = d[0], y = d[1], z = d[2];
+  double const nz = round_away(z * b.inv_length[2]);
+  if (nz != 0.0 &&
+      (!detail::unit_step_exact(z, nz, b.length[2]) ||
+       (b.tilted && !(detail::difference_exact(y, b.yz_lz * nz) &&
+                      detail::difference_exact(x, b.xz_lz * nz)))))
+    return minimum_image_exact(b, d);
+  z -= b.length[2] * nz;
+  y -= b.yz_lz * nz;
+  x -= b.xz_lz * nz;
+  double const ny = round_away(y * b.inv_length[1]);
+  if (ny != 0.0 && (!detail::unit_step_exact(y, ny, b.length[1]) ||
+                    (b.tilted && !detail::difference_exact(x, b.xy_ly * ny))))
+    return minimum_image_exact(b, d);
+  y -= b.length[1] * ny;
+  x -= b.xy_ly * ny;
+  double const nx = round_away(x * b.inv_length[0]);
+  if (nx != 0.0 && !detail::unit_step_exact(x, nx, b.length[0])) return minimum_image_exact(b, d);
+  x -= b.length[0] * nx;
+  d[0] = x;
+  d[1] = y;
+  d[2] = z;
+  return kOk;
+}
+
+// A position p wrapped into the brick |x| <= Lx/2, |y| <= Ly/2,
+// |z| <= Lz/2 centred on the origin: its image, as minimum_image.
+inline Status wrap_position(Box const &b, double p[3]) noexcept { return minimum_image(b, p); }
+
+}  // namespace batch
+}  // namespace pw85
