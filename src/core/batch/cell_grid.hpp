@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-#include "batch/scene_box.hpp"
+#include "batch/box.hpp"
 
 namespace pw85 {
 
@@ -25,7 +25,7 @@ struct CellGrid {
   // Width of the unit fractional slab along each axis: the distance
   // between the planes f_d = 0 and f_d = 1 (rounded down).
   double width[3] = {0, 0, 0};
-  scene_box::Box box;
+  batch::Box box;
 };
 
 // Slack in fractional coordinates (each |f| <= kMaxFractional is computed
@@ -35,11 +35,23 @@ constexpr double kSlack = 0x1p-28;
 // origin): beyond it a centre is refused (PW85_ERR_RANGE).
 constexpr double kMaxFractional = 0x1p20;
 
-// Unwrapped fractional coordinates of x in a periodic box.
-inline void fractional(scene_box::Box const &b, double const x[3], double f[3]) noexcept {
-  f[2] = x[2] * b.inv_l[2];
-  f[1] = (x[1] - b.yz * x[2]) * b.inv_l[1];
-  f[0] = (x[0] - b.xy * x[1] + (b.xy * b.yz - b.xz) * x[2]) * b.inv_l[0];
+// The tilts xy, xz, yz of a box, from its tilt offsets (rounded: the
+// fractional coordinates and cell widths only need them approximately,
+// their errors being covered by kSlack and the wrap error bound).
+inline void tilts(batch::Box const &b, double t[3]) noexcept {
+  t[0] = b.xy_ly * b.inv_length[1];
+  t[1] = b.xz_lz * b.inv_length[2];
+  t[2] = b.yz_lz * b.inv_length[2];
+}
+
+// Unwrapped fractional coordinates of x in a periodic box (x = f0 a1 +
+// f1 a2 + f2 a3, up to roundings).
+inline void fractional(batch::Box const &b, double const x[3], double f[3]) noexcept {
+  double t[3];
+  tilts(b, t);
+  f[2] = x[2] * b.inv_length[2];
+  f[1] = (x[1] - t[2] * x[2]) * b.inv_length[1];
+  f[0] = (x[0] - t[0] * x[1] + (t[0] * t[2] - t[1]) * x[2]) * b.inv_length[0];
 }
 
 // floor(x) for |x| < 2^52 without the library call baseline x86-64 makes
@@ -141,7 +153,7 @@ inline void for_each_neighbour_cell(CellGrid const &g, long long const c[3],
 // half-width split: cells at least rho / split wide (plus kSlack), at most
 // max_cells cells (fewer, wider cells then). Periodic: box b; open: the
 // bounding box [lo, hi] of the points.
-void cell_grid_init(CellGrid &g, scene_box::Box const &b, double const lo[3],
+void cell_grid_init(CellGrid &g, batch::Box const &b, double const lo[3],
                     double const hi[3], double rho, long long max_cells, int split) noexcept;
 
 }  // namespace pw85

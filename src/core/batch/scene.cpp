@@ -14,6 +14,8 @@
 // each verdict is pw85_overlap's.
 #include "batch/scene.hpp"
 
+#include "batch/bounds.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -35,7 +37,7 @@ namespace pw85 {
 
 namespace {
 
-using scene_box::Box;
+using batch::Box;
 
 // A growable array of trivially copyable T on malloc (the library links
 // no C++ runtime): reserve() and push() return false when memory runs out.
@@ -84,7 +86,7 @@ constexpr double kMaxOpenCoordinate = 0x1p500;
 // rounding errors); where the certificate fails, the smaller of the trace
 // and the largest Gershgorin row sum (the pw85_scene_* calls' bound).
 inline double bounding_radius(double const *q) noexcept {
-  double const loose = std::sqrt(scene_box::reach2(q) * (1 + kMargin)) * (1 + kMargin);
+  double const loose = std::sqrt(batch::reach2(q) * (1 + kMargin)) * (1 + kMargin);
   Vec3 radii;
   double rot[9];
   if (ellipsoid_axes(load_sym3(q), radii, rot, nullptr) != kOk) return loose;
@@ -139,10 +141,12 @@ inline int threads_for(int nthreads, long long work) noexcept {
 #endif
 }
 
-// r12 of the pair (i, j), i < j: c_j - c_i, or its minimum image.
-inline void pair_r12(Box const &box, double const *ci, double const *cj, double r[3]) noexcept {
+// r12 of the pair (i, j), i < j: c_j - c_i, or its minimum image
+// (batch/box.hpp, as the pw85_scene_* calls take it); false where the image
+// is refused (not for centres within kMaxFractional box lengths).
+inline bool pair_r12(Box const &box, double const *ci, double const *cj, double r[3]) noexcept {
   for (int d = 0; d < 3; ++d) r[d] = cj[d] - ci[d];
-  if (box.periodic) scene_box::min_image(box, r);
+  return !box.periodic || batch::minimum_image(box, r) == kOk;
 }
 
 // The bounding spheres of radius reach (their sum) do not meet: |r| >=
@@ -287,10 +291,12 @@ void cell_grid_init(CellGrid &g, Box const &b, double const lo[3], double const 
   g.box = b;
   g.periodic = b.periodic;
   if (b.periodic) {
-    double const t = b.xy * b.yz - b.xz;
-    g.width[2] = b.l[2];
-    g.width[1] = b.l[1] / std::sqrt(1 + b.yz * b.yz);
-    g.width[0] = b.l[0] / std::sqrt(1 + b.xy * b.xy + t * t);
+    double tl[3];
+    tilts(b, tl);
+    double const t = tl[0] * tl[2] - tl[1];
+    g.width[2] = b.length[2];
+    g.width[1] = b.length[1] / std::sqrt(1 + tl[2] * tl[2]);
+    g.width[0] = b.length[0] / std::sqrt(1 + tl[0] * tl[0] + t * t);
     for (int d = 0; d < 3; ++d) g.width[d] *= 1 - kMargin;
   } else {
     for (int d = 0; d < 3; ++d) {
@@ -359,7 +365,7 @@ Status scene_assign(Scene &scene, long long n, double const *centres, double con
                     double const *box_in, long long &bad) noexcept {
   bad = -1;
   Box box;
-  if (n < 0 || !scene_box::make_box(box_in, box)) return kInvalidArgument;
+  if (n < 0 || !batch::make_box(box_in, box)) return kInvalidArgument;
   // Every particle is checked before anything changes.
   double rmax = 0;
   long long imax = -1, isecond = -1;
@@ -372,7 +378,7 @@ Status scene_assign(Scene &scene, long long n, double const *centres, double con
     }
     double const r = bounding_radius(q + 6 * i);
     if (r > rmax) rmax = r;
-    double const g = scene_box::reach2(q + 6 * i);
+    double const g = batch::reach2(q + 6 * i);
     if (g > g1) {
       g2 = g1;
       isecond = imax;
@@ -387,7 +393,7 @@ Status scene_assign(Scene &scene, long long n, double const *centres, double con
   // (a particle with itself when n = 1: its images must not overlap it).
   if (box.periodic && n > 0) {
     long long const j = isecond >= 0 ? isecond : imax;
-    if (scene_box::too_large(box, q + 6 * imax, q + 6 * j)) {
+    if (batch::too_large(box, q + 6 * imax, q + 6 * j)) {
       bad = imax;
       return kInvalidArgument;
     }
@@ -495,8 +501,8 @@ Status sort_by_cell(Scene const &scene, double rho_scaled, double radius_scale, 
         fmax = a > fmax ? a : fmax;
       }
     }
-    double const hsum = box.l[0] + std::fabs(box.xy_ly) + std::fabs(box.xz_lz) + box.l[1] +
-                        std::fabs(box.yz_lz) + box.l[2];
+    double const hsum = box.length[0] + std::fabs(box.xy_ly) + std::fabs(box.xz_lz) + box.length[1] +
+                        std::fabs(box.yz_lz) + box.length[2];
     q.wrap_error = 64 * kU * (fmax + 2) * hsum;
     lo[0] = lo[1] = lo[2] = hi[0] = hi[1] = hi[2] = 0;
   } else {
@@ -531,9 +537,9 @@ Status sort_by_cell(Scene const &scene, double rho_scaled, double radius_scale, 
     if (box.periodic) {
       double f[3];
       for (int d = 0; d < 3; ++d) f[d] = frac.data[3 * i + d] - floor_small(frac.data[3 * i + d]);
-      w[0] = f[0] * box.l[0] + f[1] * box.xy_ly + f[2] * box.xz_lz;
-      w[1] = f[1] * box.l[1] + f[2] * box.yz_lz;
-      w[2] = f[2] * box.l[2];
+      w[0] = f[0] * box.length[0] + f[1] * box.xy_ly + f[2] * box.xz_lz;
+      w[1] = f[1] * box.length[1] + f[2] * box.yz_lz;
+      w[2] = f[2] * box.length[2];
     }
     q.wx.data[k] = w[0];
     q.wy.data[k] = w[1];
@@ -570,7 +576,10 @@ struct CandidateSink {
     bool const forward = ia < ib;
     long long const lo = forward ? a : b, hi = forward ? b : a;
     double r[3];
-    pair_r12(scene.box, sorted.centre.data + 3 * lo, sorted.centre.data + 3 * hi, r);
+    if (!pair_r12(scene.box, sorted.centre.data + 3 * lo, sorted.centre.data + 3 * hi, r)) {
+      status = kInvalidArgument;
+      return;
+    }
     if (spheres_apart(r, reach)) return;
     ++examined;
     Candidate &k = cand.data[cand.size++];
@@ -681,9 +690,9 @@ void scan_cell(Sorted const &q, long long c, int split, CandidateSink &sink) noe
       for (int r = 0; r < nrun; ++r) {
         double shift[3] = {0, 0, 0};
         if (g.periodic) {
-          shift[0] = wrap[r] * box.l[0] + wy * box.xy_ly + wz * box.xz_lz;
-          shift[1] = wy * box.l[1] + wz * box.yz_lz;
-          shift[2] = wz * box.l[2];
+          shift[0] = wrap[r] * box.length[0] + wy * box.xy_ly + wz * box.xz_lz;
+          shift[1] = wy * box.length[1] + wz * box.yz_lz;
+          shift[2] = wz * box.length[2];
         }
         long long const b0 = start[base + runs[r][0]], b1 = start[base + runs[r][1] + 1];
         if (b0 == b1) continue;
@@ -712,7 +721,10 @@ void scan_cell_general(Sorted const &q, long long c, double rho, CandidateSink &
       if (c2 < c) return;
       for (long long b = c2 == c ? a + 1 : start[c2]; b < start[c2 + 1]; ++b) {
         double d[3];
-        pair_r12(g.box, q.centre.data + 3 * a, q.centre.data + 3 * b, d);
+        if (!pair_r12(g.box, q.centre.data + 3 * a, q.centre.data + 3 * b, d)) {
+          sink.status = kInvalidArgument;
+          return;
+        }
         if (spheres_apart(d, ra + q.rad.data[b])) continue;
         ++sink.spheres;
         if (plane_separates(d, q.q.data + 6 * a, q.q.data + 6 * b, 0.0)) continue;
@@ -736,7 +748,7 @@ Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacit
   if (box.periodic && scaled && n > 0) {
     double r1 = 0, r2 = 0;
     for (long long i = 0; i < n; ++i) {
-      double const g = std::sqrt(scene_box::reach2(scene.q + 6 * i));
+      double const g = std::sqrt(batch::reach2(scene.q + 6 * i));
       if (g > r1) {
         r2 = r1;
         r1 = g;
@@ -856,7 +868,7 @@ Status check_trial(Scene const &scene, long long i, double const *centre, double
   if (s != kOk) return s;
   radius = bounding_radius(q);
   if (scene.box.periodic) {
-    double const rt = std::sqrt(scene_box::reach2(q));
+    double const rt = std::sqrt(batch::reach2(q));
     double const other = scene.n > 1 ? scene.radius_max : rt;
     if (rt + (other > rt ? other : rt) > scene.box.max_reach) return kInvalidArgument;
   }
@@ -881,14 +893,16 @@ Status scene_test_move(Scene const &scene, long long i, double const centre[3],
   Buffer<Candidate> heap;
   Candidate *cand = local;
   long long m = 0, cap = kLocal;
-  bool oom = false;
+  bool oom = false, refused = false;
   for_each_neighbour_cell(g, c, k, [&](long long cell) noexcept {
     for (long long b = scene.head[cell]; b >= 0; b = scene.next[b]) {
       if (b == i || oom) continue;
       double r[3];
       double const *cb = scene.centres + 3 * b;
-      if (i < b) pair_r12(scene.box, centre, cb, r);
-      else pair_r12(scene.box, cb, centre, r);
+      if (!(i < b ? pair_r12(scene.box, centre, cb, r) : pair_r12(scene.box, cb, centre, r))) {
+        refused = true;
+        continue;
+      }
       if (spheres_apart(r, rt + scene.radius[b])) continue;
       double const *qa = i < b ? q : scene.q + 6 * b;
       double const *qb = i < b ? scene.q + 6 * b : q;
@@ -909,6 +923,7 @@ Status scene_test_move(Scene const &scene, long long i, double const centre[3],
     }
   });
   if (oom) return kNoMemory;
+  if (refused) return kInvalidArgument;
   std::sort(cand, cand + m, [](Candidate const &x, Candidate const &y) { return x.j < y.j; });
   for (long long t = 0; t < m; ++t) {
     long long const b = cand[t].j;

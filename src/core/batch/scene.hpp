@@ -13,7 +13,7 @@ namespace pw85 {
 struct Scene {
   long long n = 0;
   long long capacity = 0;  // particles the arrays hold
-  scene_box::Box box;
+  batch::Box box;
   double *centres = nullptr;  // 3n, as given
   double *q = nullptr;        // 6n
   double *radius = nullptr;   // n, bounding-sphere radius rounded up
