@@ -783,7 +783,7 @@ Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacit
   long long spheres_total = 0, examined_total = 0;
   bool const want_mu2 = mu2_out != nullptr;
   constexpr long long kBlock = 256;
-#pragma omp parallel num_threads(nt) reduction(+ : spheres_total, examined_total)
+#pragma omp parallel num_threads(nt) if (nt > 1) reduction(+ : spheres_total, examined_total)
   {
 #ifdef _OPENMP
     int const tid = omp_get_thread_num();
