@@ -491,14 +491,17 @@ PW85_API int pw85_contact(double const r12[PW85_DIM], double const q1[PW85_SYM],
  * changed; ignored without OpenMP. status (may be NULL) receives the status
  * of each pair. Indices and counts are long long (64-bit), so that the
  * header needs no other header and Fortran passes integer(c_long_long).
- * The recommended calls are pw85_overlap_pairs, pw85_contact_function_pairs,
- * pw85_contact_pairs and pw85_scene_* further below; the three *_batch
- * calls keep their signatures and behaviour (ABI). pw85_contact_function_batch
- * runs pw85 1.0's Brent iteration, several times slower than
- * PW85_METHOD_DEFAULT (docs/batch.md). */
+ * The scene and pairs calls further below (pw85_scene_*, pw85_*_pairs) are
+ * the implementation; the three *_batch calls keep their signatures and
+ * behaviour (ABI): pw85_overlap_batch and pw85_contact_batch are one-line
+ * wrappers of pw85_scene_overlap and pw85_scene_contact with box NULL;
+ * pw85_contact_function_batch runs pw85_contact_function (pw85 1.0's Brent
+ * iteration, several times slower than PW85_METHOD_DEFAULT) through the
+ * same scene loop (docs/batch.md). */
 
-/* Overlap verdicts of m pairs: overlap[k] = pw85_overlap() of pair k (1, 0,
- * or a negative status), status[k] = PW85_OK or that negative status.
+/* pw85_scene_overlap(n, centres, q, NULL, m, pairs, overlap, status,
+ * nthreads): overlap verdicts of m pairs, overlap[k] = pw85_overlap() of
+ * pair k (1, 0, or a negative status), status[k] = PW85_OK or that status.
  * Returns PW85_OK when every pair succeeded (m = 0 included), else the status
  * of the first failing pair (lowest k): PW85_ERR_INVALID_ARGUMENT (also for
  * an index < 0 or >= n), PW85_ERR_NOT_SPD or PW85_ERR_INACCURATE, as
@@ -521,7 +524,8 @@ PW85_API int pw85_contact_function_batch(long long n, double const *centres,
                                          long long const *pairs, double *out,
                                          int *status, int nthreads);
 
-/* Contact geometry of m pairs: c[k] = pw85_contact() of pair k, status[k]
+/* pw85_scene_contact(n, centres, q, NULL, m, pairs, c, status, nthreads):
+ * contact geometry of m pairs, c[k] = pw85_contact() of pair k, status[k]
  * its status. Returns PW85_OK when every pair succeeded (m = 0 included),
  * else the status of the first failing pair (lowest k):
  * PW85_ERR_INVALID_ARGUMENT (also for an index < 0 or >= n; that pair's

@@ -12,6 +12,7 @@
 #include "common/sym2.hpp"
 #include "common/sym3.hpp"
 #include "validate.hpp"
+#include "common/scaling.hpp"
 
 static_assert(pw85::kDcaMaxEval == PW85_DCA_MAX_EVAL, "must match pw85.h");
 static_assert(pw85::kDcaThetaTol == PW85_DCA_THETA_TOL, "must match pw85.h");
@@ -30,10 +31,8 @@ bool normalise(double const *u, double *out) noexcept {
   int e;
   std::frexp(m, &e);
   double n2 = 0.0;
-  for (int i = 0; i < N; ++i) {
-    out[i] = std::ldexp(u[i], -e);
-    n2 += out[i] * out[i];
-  }
+  pw85::scale_by_power_of_two(u, out, N, -e);
+  for (int i = 0; i < N; ++i) n2 += out[i] * out[i];
   double const inv = 1.0 / std::sqrt(n2);
   for (int i = 0; i < N; ++i) out[i] *= inv;
   return true;
@@ -46,7 +45,7 @@ bool spd_scaled_2d(double const *q) noexcept {
   int e = pw85::max_exponent(q, 3);
   e += e & 1;
   pw85::Sym2 s;
-  for (int i = 0; i < 3; ++i) s[i] = std::ldexp(q[i], -e);
+  pw85::scale_by_power_of_two(q, s.a, 3, -e);
   return pw85::is_positive_definite(s);
 }
 

@@ -12,6 +12,7 @@
 #include "common/status.hpp"
 #include "common/sym3.hpp"
 #include "validate.hpp"
+#include "common/scaling.hpp"
 
 static_assert(pw85::kOk == PW85_OK, "status codes must match pw85.h");
 static_assert(pw85::kInvalidArgument == PW85_ERR_INVALID_ARGUMENT, "");
@@ -41,11 +42,7 @@ int scale_pair(pw85::Vec3 &r, pw85::Sym3 &q1, pw85::Sym3 &q2) noexcept {
   std::frexp(rm, &er);
   std::frexp(qm, &eq);
   eq += eq & 1;  // even: the square roots of the Cholesky factor scale exactly
-  for (int i = 0; i < pw85::kDim; ++i) r[i] = std::ldexp(r[i], -er);
-  for (int i = 0; i < pw85::kSym; ++i) {
-    q1[i] = std::ldexp(q1[i], -eq);
-    q2[i] = std::ldexp(q2[i], -eq);
-  }
+  pw85::scale_pair(r, q1, q2, -er, -eq, r, q1, q2);
   return 2 * er - eq;
 }
 

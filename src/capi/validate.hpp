@@ -7,6 +7,7 @@
 #include "common/screen.hpp"
 #include "common/status.hpp"
 #include "common/sym3.hpp"
+#include "common/scaling.hpp"
 
 namespace pw85 {
 namespace capi {
@@ -26,7 +27,7 @@ inline bool spd_scaled(double const *q) noexcept {
   int e = max_exponent(q, kSym);
   e += e & 1;
   Sym3 s;
-  for (int i = 0; i < kSym; ++i) s[i] = std::ldexp(q[i], -e);
+  scale_by_power_of_two(q, s.a, kSym, -e);
   return is_positive_definite(s);
 }
 

@@ -14,7 +14,8 @@
 // each verdict is pw85_overlap's.
 #include "batch/scene.hpp"
 
-#include "batch/bounds.hpp"
+#include "batch/pairs.hpp"
+#include "batch/schedule.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -123,22 +124,6 @@ Status check_particle(Box const &box, double const *c, double const *q) noexcept
       if (!(std::fabs(c[d]) <= kMaxOpenCoordinate)) return kRange;
   }
   return kOk;
-}
-
-// Number of OpenMP threads: nthreads (0: the OpenMP default), at most the
-// processors and at most work.
-inline int threads_for(int nthreads, long long work) noexcept {
-#ifdef _OPENMP
-  long long t = nthreads > 0 ? nthreads : omp_get_max_threads();
-  long long const procs = omp_get_num_procs();
-  if (t > procs) t = procs;
-  if (t > work) t = work;
-  return t < 1 ? 1 : static_cast<int>(t);
-#else
-  (void)nthreads;
-  (void)work;
-  return 1;
-#endif
 }
 
 // r12 of the pair (i, j), i < j: c_j - c_i, or its minimum image
@@ -775,7 +760,7 @@ Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacit
                                        grid.n[1] >= 2 * kSplit + 1 &&
                                        grid.n[2] >= 2 * kSplit + 1);
 
-  int const nt = threads_for(nthreads, cells);
+  int const nt = batch::threads_for(nthreads, cells);
   Buffer<PairOut> *results = allocate<Buffer<PairOut>>(nt);
   if (results == nullptr) return kNoMemory;
   for (int t = 0; t < nt; ++t) new (&results[t]) Buffer<PairOut>();

@@ -4,6 +4,7 @@
 
 #include "common/fp.hpp"
 #include "common/magnitude.hpp"
+#include "common/scaling.hpp"
 
 namespace pw85 {
 
@@ -18,7 +19,7 @@ Sym3 spheroid(double a, double c, Vec3 const &n_in) noexcept {
   // underflow.
   int const en = max_exponent(n_in.x, kDim);
   Vec3 n;
-  for (int i = 0; i < kDim; ++i) n[i] = std::ldexp(n_in[i], -en);
+  scale_by_power_of_two(n_in.x, n.x, kDim, -en);
   double const a2 = a * a, c2 = c * c;
   double const s0 = n[0] * n[0], s1 = n[1] * n[1], s2 = n[2] * n[2];
   double const inv = 1.0 / (s0 + s1 + s2);

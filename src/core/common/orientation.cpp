@@ -6,6 +6,7 @@
 #include "common/fp.hpp"
 #include "common/isa.hpp"
 #include "common/magnitude.hpp"
+#include "common/scaling.hpp"
 
 namespace pw85 {
 
@@ -53,8 +54,10 @@ PW85_ALWAYS_INLINE Status quat_body(Vec3 const &radii, double const quat[4], Sym
       {twice(sum(xy, wz)), dif(sum(ww, yy), sum(xx, zz)), twice(dif(yz, wx))},
       {twice(dif(xz, wy)), twice(sum(yz, wx)), dif(sum(ww, zz), sum(xx, yy))}};
   int const e = max_exponent(radii.x, kDim);
+  Vec3 scaled_radii;
+  scale_by_power_of_two(radii.x, scaled_radii.x, kDim, -e);
   DD a2[3];
-  for (int k = 0; k < kDim; ++k) a2[k] = sq<F>(std::ldexp(radii[k], -e));
+  for (int k = 0; k < kDim; ++k) a2[k] = sq<F>(scaled_radii[k]);
   // Median of the three a_k² (by their leading parts; ties pick any).
   int const lo = a2[0].hi <= a2[1].hi ? 0 : 1, hi = 1 - lo;
   int const med = a2[2].hi <= a2[lo].hi ? lo : (a2[2].hi >= a2[hi].hi ? hi : 2);
@@ -78,7 +81,7 @@ PW85_ALWAYS_INLINE Status quat_body(Vec3 const &radii, double const quat[4], Sym
     }
   }
   if (!is_positive_definite(scaled)) return kNotSpd;
-  for (int i = 0; i < kSym; ++i) q[i] = std::ldexp(scaled[i], 2 * e);
+  scale_by_power_of_two(scaled.a, q.a, kSym, 2 * e);
   return kOk;
 }
 
@@ -187,10 +190,12 @@ constexpr int kMaxSweeps = 32;
 Status ellipsoid_axes(Sym3 const &q, Vec3 &radii, double rot[9], double quat[4]) noexcept {
   int e = max_exponent(q.a, kSym);
   e += e & 1;
+  Sym3 scaled;
+  scale_by_power_of_two(q.a, scaled.a, kSym, -e);
   double a[3][3], v[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   int idx = 0;
   for (int i = 0; i < kDim; ++i)
-    for (int j = i; j < kDim; ++j, ++idx) a[i][j] = a[j][i] = std::ldexp(q[idx], -e);
+    for (int j = i; j < kDim; ++j, ++idx) a[i][j] = a[j][i] = scaled[idx];
   static constexpr int kPlanes[3][2] = {{0, 1}, {0, 2}, {1, 2}};
   Status status = kNoConvergence;
   for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {

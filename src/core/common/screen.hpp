@@ -11,6 +11,7 @@
 
 #include "common/fp.hpp"
 #include "common/magnitude.hpp"
+#include "common/scaling.hpp"
 
 namespace pw85 {
 
@@ -40,7 +41,7 @@ inline bool ldl_positive_scaled(double const *a) noexcept {
   if (ldl_positive(a)) return true;
   int const e = max_exponent(a, 6);
   double b[6];
-  for (int i = 0; i < 6; ++i) b[i] = std::ldexp(a[i], -e);
+  scale_by_power_of_two(a, b, 6, -e);
   return ldl_positive(b);
 }
 

@@ -27,6 +27,7 @@
 #include "eval/f_cholesky.hpp"
 #include "eval/f_dd.hpp"
 #include "common/magnitude.hpp"
+#include "common/scaling.hpp"
 
 namespace pw85 {
 
@@ -73,11 +74,7 @@ Status contact_brent(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in,
   int const er = max_exponent(r_in.x, kDim);
   int const eq = std::max(max_exponent(q1_in.a, kSym), max_exponent(q2_in.a, kSym));
   FParams p;
-  for (int i = 0; i < kDim; ++i) p.r[i] = std::ldexp(r_in[i], -er);
-  for (int i = 0; i < kSym; ++i) {
-    p.q1[i] = std::ldexp(q1_in[i], -eq);
-    p.q2[i] = std::ldexp(q2_in[i], -eq);
-  }
+  scale_pair(r_in, q1_in, q2_in, -er, -eq, p.r, p.q1, p.q2);
   p.failed = false;
   int const mu2_exponent = 2 * er - eq;
   res.er = er;

@@ -22,6 +22,7 @@
 #include "common/fp.hpp"
 #include "dca/dca.hpp"
 #include "common/magnitude.hpp"
+#include "common/scaling.hpp"
 
 namespace pw85 {
 
@@ -66,12 +67,9 @@ Status contact_function_2d(Vec2 const &r_in, Sym2 const &q1_in, Sym2 const &q2_i
   int const er = max_exponent(r_in.x, 2);
   double qs[6] = {q1_in[0], q1_in[1], q1_in[2], q2_in[0], q2_in[1], q2_in[2]};
   int const eq = max_exponent(qs, 6);
-  Vec2 const r{{std::ldexp(r_in[0], -er), std::ldexp(r_in[1], -er)}};
+  Vec2 r;
   Sym2 q1, q2;
-  for (int i = 0; i < 3; ++i) {
-    q1[i] = std::ldexp(q1_in[i], -eq);
-    q2[i] = std::ldexp(q2_in[i], -eq);
-  }
+  scale_pair(r_in, q1_in, q2_in, -er, -eq, r, q1, q2);
   Vec2 s1, s2;
   if (!solve(q1, r, s1) || !solve(q2, r, s2)) {
     mu2 = lambda = std::nan("");

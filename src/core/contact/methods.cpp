@@ -15,6 +15,7 @@
 #include "common/magnitude.hpp"
 #include "contact/newton.hpp"
 #include "common/screen.hpp"
+#include "common/scaling.hpp"
 
 namespace pw85 {
 
@@ -190,11 +191,7 @@ Status contact_brent_status(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_
   int const er = cr.er, eq = cr.eq;
   Vec3 r;
   Sym3 q1, q2;
-  for (int i = 0; i < kDim; ++i) r[i] = std::ldexp(r_in[i], -er);
-  for (int i = 0; i < kSym; ++i) {
-    q1[i] = std::ldexp(q1_in[i], -eq);
-    q2[i] = std::ldexp(q2_in[i], -eq);
-  }
+  scale_pair(r_in, q1_in, q2_in, -er, -eq, r, q1, q2);
   double const mu2 = cr.mu2_rescaled;
   double f;
   double const err = error_at(mu2, cr.lambda, r, q1, q2, f);
@@ -235,11 +232,7 @@ Status contact_method(int method, Vec3 const &r_in, Sym3 const &q1_in, Sym3 cons
   if (scale) {
     er = max_exponent(r.x, kDim);
     eq = std::max(max_exponent(q1.a, kSym), max_exponent(q2.a, kSym));
-    for (int i = 0; i < kDim; ++i) r[i] = std::ldexp(r[i], -er);
-    for (int i = 0; i < kSym; ++i) {
-      q1[i] = std::ldexp(q1[i], -eq);
-      q2[i] = std::ldexp(q2[i], -eq);
-    }
+    scale_pair(r, q1, q2, -er, -eq, r, q1, q2);
   }
   Status s = contact_method_in_range(method, r, q1, q2, res);
   if (scale) {

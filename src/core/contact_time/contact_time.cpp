@@ -23,6 +23,7 @@
 #include "contact_time/motion.hpp"
 #include "derivatives/derivatives.hpp"
 #include "eval/f_dd.hpp"
+#include "common/scaling.hpp"
 
 namespace pw85 {
 
@@ -240,14 +241,8 @@ Status contact_time(Vec3 const &r12, Vec3 const &v12, Sym3 const &q1, Vec3 const
   Motion mo;
   mo.w1 = w1;
   mo.w2 = w2;
-  for (int i = 0; i < kDim; ++i) {
-    mo.r0[i] = std::ldexp(r12[i], -e);
-    mo.v[i] = std::ldexp(v12[i], -e);
-  }
-  for (int i = 0; i < kSym; ++i) {
-    mo.a1[i] = std::ldexp(q1[i], -2 * e);
-    mo.a2[i] = std::ldexp(q2[i], -2 * e);
-  }
+  scale_pair(r12, q1, q2, -e, -2 * e, mo.r0, mo.a1, mo.a2);
+  scale_by_power_of_two(v12.x, mo.v.x, kDim, -e);
   double const vn = norm(mo.v);
   if (!std::isfinite(norm(mo.r0) + t_max * vn) || !std::isfinite(t_max * (norm(w1) + norm(w2))))
     return kInvalidArgument;

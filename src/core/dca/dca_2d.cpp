@@ -49,6 +49,7 @@
 #include "common/fp.hpp"
 #include "dca/dca.hpp"
 #include "common/magnitude.hpp"
+#include "common/scaling.hpp"
 
 namespace pw85 {
 
@@ -177,10 +178,7 @@ Status dca_2d(Vec2 const &u, Sym2 const &q1_in, Sym2 const &q2_in,
   // Exact rescaling: Q -> 2^-2k Q multiplies every length, d included, by 2^-k.
   int const e2 = even_scale_exponent(q1_in, q2_in);
   Sym2 q1, q2;
-  for (int i = 0; i < 3; ++i) {
-    q1[i] = std::ldexp(q1_in[i], -e2);
-    q2[i] = std::ldexp(q2_in[i], -e2);
-  }
+  scale_matrices(q1_in, q2_in, -e2, q1, q2);
   Eigen2 e1 = eigen(q1);
   Eigen2 e2d = eigen(q2);
   // Map the rounder ellipse to the circle; swapping the ellipses leaves d

@@ -36,6 +36,7 @@
 #include "dca/dca.hpp"
 #include "eval/f_cholesky.hpp"
 #include "common/magnitude.hpp"
+#include "common/scaling.hpp"
 
 namespace pw85 {
 
@@ -120,10 +121,7 @@ Status dca_zheng(Vec3 const &u, Sym3 const &q1_in, Sym3 const &q2_in, double the
   // Exact rescaling by an even power of two: d scales by its square root.
   int const e2 = even_scale_exponent(q1_in, q2_in);
   Sym3 q1, q2;
-  for (int i = 0; i < kSym; ++i) {
-    q1[i] = std::ldexp(q1_in[i], -e2);
-    q2[i] = std::ldexp(q2_in[i], -e2);
-  }
+  scale_matrices(q1_in, q2_in, -e2, q1, q2);
   PlaneDca dca(u, q1, q2);
 
   // Samples; x is the best one, a and b its neighbours (unwrapped, period pi).
@@ -226,7 +224,7 @@ Status contact_zheng(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   // |r| without overflow: scale by the largest component (exact power of 2).
   int const er = max_exponent(r.x, kDim);
   Vec3 rs;
-  for (int i = 0; i < kDim; ++i) rs[i] = std::ldexp(r[i], -er);
+  scale_by_power_of_two(r.x, rs.x, kDim, -er);
   double const norm = std::sqrt(dot(rs, rs));
   Vec3 const u = scaled(rs, 1.0 / norm);
   DcaResult dr;

@@ -6,6 +6,7 @@
 #include "common/magnitude.hpp"
 #include "contact/contact.hpp"
 #include "dca/dca.hpp"
+#include "common/scaling.hpp"
 
 namespace pw85 {
 
@@ -18,14 +19,11 @@ Status dca_by_contact_function(Vec3 const &u, Sym3 const &q1, Sym3 const &q2, in
   // of Q).
   int const e = max_exponent(u.x, kDim);
   Vec3 v;
-  for (int i = 0; i < kDim; ++i) v[i] = std::ldexp(u[i], -e);
+  scale_by_power_of_two(u.x, v.x, kDim, -e);
   int eq = std::max(max_exponent(q1.a, kSym), max_exponent(q2.a, kSym));
   eq += eq & 1;
   Sym3 p1, p2;
-  for (int i = 0; i < kSym; ++i) {
-    p1[i] = std::ldexp(q1[i], -eq);
-    p2[i] = std::ldexp(q2[i], -eq);
-  }
+  scale_matrices(q1, q2, -eq, p1, p2);
   MethodResult res;
   Status const s = contact_method(method, v, p1, p2, res);
   if (s == kUnknownMethod) return s;

@@ -39,6 +39,7 @@
 #include "derivatives/adjugate.hpp"
 #endif
 #include "eval/f_dd.hpp"
+#include "common/scaling.hpp"
 
 namespace pw85 {
 
@@ -381,11 +382,7 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   int const e = -(ex / 2);
   Vec3 rs;
   Sym3 a, b;
-  for (int i = 0; i < kDim; ++i) rs[i] = std::ldexp(r[i], e);
-  for (int i = 0; i < kSym; ++i) {
-    a[i] = std::ldexp(q1[i], 2 * e);
-    b[i] = std::ldexp(q2[i], 2 * e);
-  }
+  scale_pair(r, q1, q2, e, 2 * e, rs, a, b);
   Derivatives s;
   MethodResult res;
   Status const status =
@@ -394,12 +391,10 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
     d = s;  // all NaN
     return status;
   }
-  for (int i = 0; i < kDim; ++i) s.d_r12[i] = std::ldexp(s.d_r12[i], e);
-  for (int k = 0; k < kSym; ++k) {
-    s.d_q1[k] = std::ldexp(s.d_q1[k], 2 * e);
-    s.d_q2[k] = std::ldexp(s.d_q2[k], 2 * e);
-    s.hess_r12[k] = std::ldexp(s.hess_r12[k], 2 * e);
-  }
+  scale_by_power_of_two(s.d_r12, kDim, e);
+  scale_by_power_of_two(s.d_q1, kSym, 2 * e);
+  scale_by_power_of_two(s.d_q2, kSym, 2 * e);
+  scale_by_power_of_two(s.hess_r12, kSym, 2 * e);
   double const *all = &s.mu2;
   for (int i = 0; i < kFields; ++i) {
     if (!std::isfinite(all[i])) {

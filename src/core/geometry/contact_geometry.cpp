@@ -27,6 +27,7 @@
 #include "geometry/contact_geometry.hpp"
 #include "eval/f_dd.hpp"
 #include "eval/f_ldl.hpp"
+#include "common/scaling.hpp"
 
 namespace pw85 {
 
@@ -224,11 +225,7 @@ Status contact_geometry(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in,
     std::frexp(rmax, &er);
     std::frexp(qmax, &eq);
     eq += eq & 1;  // even (also for negative eq: two's complement)
-    for (int i = 0; i < kDim; ++i) r[i] = std::ldexp(r[i], -er);
-    for (int i = 0; i < kSym; ++i) {
-      q1[i] = std::ldexp(q1[i], -eq);
-      q2[i] = std::ldexp(q2[i], -eq);
-    }
+    scale_pair(r, q1, q2, -er, -eq, r, q1, q2);
   }
   Status status = contact_point(r, q1, q2, g);
   if (!(g.lambda >= 0.0 && g.lambda <= 1.0)) return status;
@@ -243,7 +240,7 @@ Status contact_geometry(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in,
   double const mu = scale ? std::ldexp(mu_s, emu) : mu_s;
   g.mu2 = mu2;
   if (scale)
-    for (int i = 0; i < kDim; ++i) g.x0[i] = std::ldexp(g.x0[i], er);
+    scale_by_power_of_two(g.x0, kDim, er);
   g.dca = scale ? std::ldexp(dca_s, eq / 2) : dca_s;
   // depth = dca - |r| = dca (1 - mu) (G5): as dca (1 - mu^2) / (1 + mu)
   // without cancellation near tangency; for mu >= 2, where mu^2 may
