@@ -149,6 +149,16 @@ static double bound_radius(double const q[6]) {
   return fmax(radii[0], fmax(radii[1], radii[2]));
 }
 
+/* Cell coordinates of particle i in a grid of nc cells per axis. */
+static void cell_of(config const *cf, long long i, long long const nc[3], long long x[3]) {
+  for (int d = 0; d < 3; d++) {
+    double f = cf->c[3 * i + d] / cf->box[d];
+    f -= floor(f);
+    x[d] = (long long)(f * nc[d]);
+    if (x[d] >= nc[d]) x[d] = nc[d] - 1;
+  }
+}
+
 static long long sphere_pairs(config const *cf, double **r12, double **q1, double **q2) {
   long long const n = cf->n;
   double rmax = 0;
@@ -163,12 +173,7 @@ static long long sphere_pairs(config const *cf, double **r12, double **q1, doubl
   for (long long c = 0; c < cells; c++) head[c] = -1;
   for (long long i = 0; i < n; i++) {
     long long x[3];
-    for (int d = 0; d < 3; d++) {
-      double f = cf->c[3 * i + d] / cf->box[d];
-      f -= floor(f);
-      x[d] = (long long)(f * nc[d]);
-      if (x[d] >= nc[d]) x[d] = nc[d] - 1;
-    }
+    cell_of(cf, i, nc, x);
     long long const c = x[0] + nc[0] * (x[1] + nc[1] * x[2]);
     next[i] = head[c];
     head[c] = i;
@@ -179,12 +184,7 @@ static long long sphere_pairs(config const *cf, double **r12, double **q1, doubl
   *q2 = malloc(sizeof(double) * 6 * cap);
   for (long long i = 0; i < n; i++) {
     long long x[3];
-    for (int d = 0; d < 3; d++) {
-      double f = cf->c[3 * i + d] / cf->box[d];
-      f -= floor(f);
-      x[d] = (long long)(f * nc[d]);
-      if (x[d] >= nc[d]) x[d] = nc[d] - 1;
-    }
+    cell_of(cf, i, nc, x);
     double const ri = bound_radius(cf->q + 6 * i);
     for (long long dz = nc[2] == 1 ? 0 : -1; dz <= (nc[2] == 1 ? 0 : 1); dz++)
       for (long long dy = nc[1] == 1 ? 0 : -1; dy <= (nc[1] == 1 ? 0 : 1); dy++)

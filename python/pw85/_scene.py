@@ -5,7 +5,7 @@ import ctypes
 import numpy as np
 
 from ._lib import lib, Error, Status, status_name, strerror, P, D, I, LL, _sig
-from ._api import _arr, _nthreads, _not_spd, ellipsoid_quat
+from ._api import _arr, _box, _nthreads, _not_spd, ellipsoid_quat
 
 _sig(lib.pw85_configuration_create, [LL, P, P, P, ctypes.POINTER(P), ctypes.POINTER(LL)])
 _sig(lib.pw85_configuration_destroy, [P], None)
@@ -18,17 +18,9 @@ _sig(lib.pw85_configuration_move, [P, LL, P, P])
 _destroy = lib.pw85_configuration_destroy
 
 
-def _box(box):
-    if box is None:
-        return None
-    bx = _arr(box, "box", 6, ndim=1)
-    L, t = bx[:3], bx[3:]
-    with np.errstate(over="ignore", invalid="ignore"):
-        tilts_ok = np.all(np.isfinite(t * np.array([L[1], L[2], L[2]])))
-    if not (np.all(np.isfinite(bx)) and np.all(L > 0) and tilts_ok):
-        raise ValueError(f"box: expected {{Lx, Ly, Lz, xy, xz, yz}} with finite lengths > 0 "
-                         f"and finite tilts, got {bx.tolist()}")
-    return bx.copy()
+def _copied_box(box):
+    bx = _box(box)
+    return None if bx is None else bx.copy()
 
 
 def _particles(centres, q):
@@ -84,7 +76,7 @@ class Scene:
     def __init__(self, centres, q, box=None):
         self._handle = None
         c, qq = _particles(centres, q)
-        bx = _box(box)
+        bx = _copied_box(box)
         h = P()
         bad = LL(-1)
         ret = lib.pw85_configuration_create(c.shape[0], c.ctypes.data, qq.ctypes.data,
@@ -170,7 +162,7 @@ class Scene:
         """Replaces every particle and the box (no reallocation in C when N
         does not grow); on error the scene is unchanged."""
         c, qq = _particles(centres, q)
-        bx = _box(box)
+        bx = _copied_box(box)
         bad = LL(-1)
         ret = lib.pw85_configuration_update(self._h(), c.shape[0], c.ctypes.data,
                                             qq.ctypes.data,

@@ -310,14 +310,23 @@ void cell_grid_init(CellGrid &g, Box const &b, double const lo[3], double const 
   g.cells = g.n[0] * g.n[1] * g.n[2];
 }
 
+namespace {
+
+// Frees the per-particle arrays of s (not the cell heads).
+void free_particle_arrays(Scene &s) noexcept {
+  std::free(s.centres);
+  std::free(s.q);
+  std::free(s.radius);
+  std::free(s.next);
+  std::free(s.prev);
+  std::free(s.cell_of);
+}
+
+}  // namespace
+
 void scene_release(Scene &scene) noexcept {
-  std::free(scene.centres);
-  std::free(scene.q);
-  std::free(scene.radius);
+  free_particle_arrays(scene);
   std::free(scene.head);
-  std::free(scene.next);
-  std::free(scene.prev);
-  std::free(scene.cell_of);
   scene = Scene{};
 }
 
@@ -408,27 +417,11 @@ Status scene_assign(Scene &scene, long long n, double const *centres, double con
   bool const ok = (!grow || (next_scene.centres && next_scene.q && next_scene.radius &&
                              next_scene.next && next_scene.prev && next_scene.cell_of)) &&
                   (!grow_grid || next_scene.head);
-  if (!ok) {
-    if (grow) {
-      std::free(next_scene.centres);
-      std::free(next_scene.q);
-      std::free(next_scene.radius);
-      std::free(next_scene.next);
-      std::free(next_scene.prev);
-      std::free(next_scene.cell_of);
-    }
-    if (grow_grid) std::free(next_scene.head);
-    return kNoMemory;
-  }
-  if (grow) {
-    std::free(scene.centres);
-    std::free(scene.q);
-    std::free(scene.radius);
-    std::free(scene.next);
-    std::free(scene.prev);
-    std::free(scene.cell_of);
-  }
-  if (grow_grid) std::free(scene.head);
+  // On failure the new arrays go, else the old ones they replace.
+  Scene &dropped = ok ? scene : next_scene;
+  if (grow) free_particle_arrays(dropped);
+  if (grow_grid) std::free(dropped.head);
+  if (!ok) return kNoMemory;
   scene = next_scene;
   scene.n = n;
   scene.box = box;
