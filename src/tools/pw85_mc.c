@@ -366,6 +366,18 @@ int main(int argc, char **argv) {
     pw85_spheroid(s.a, s.c, s.u + 3 * i, s.q + 6 * i);
   }
   double const box[6] = {s.L, s.L, s.L, 0.0, 0.0, 0.0};
+  /* The box must hold every orientation: the library's bound on two
+   * bounding spheres (radius at most sqrt(trace Q) = sqrt(2 a^2 + c^2),
+   * whatever the rotation) against half the side. */
+  if (2.0 * sqrt(2.0 * s.a * s.a + s.c * s.c) > 0.5 * s.L * (1.0 - 1e-9)) {
+    fprintf(stderr, "pw85_mc: box %g too small for the spheroids (side < 4 sqrt(2 a^2 + c^2)); "
+            "increase --n\n", s.L);
+    free_scene(&s);
+    free(fbuf);
+    if (xyz) fclose(xyz);
+    if (have_gsd) gsd_close(&gsd);
+    return 2;
+  }
   long long bad_particle = -1;
   int const created = pw85_configuration_create(n, s.x, s.q, box, &s.conf, &bad_particle);
   if (created != PW85_OK) {
