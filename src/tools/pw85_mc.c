@@ -28,7 +28,7 @@
  * (extended XYZ for OVITO, GSD for HOOMD-blue). Prints the number of trial
  * moves per second of the production loop, then checks that no pair
  * overlaps (pw85_configuration_pairs, s = 1) and the smallest mu^2 of the
- * neighbour pairs within s = 1.2 (pw85_configuration_pairs, then
+ * neighbour pairs within s = 1.2 or 1 (pw85_configuration_pairs, then
  * pw85_scene_contact_function on those pairs).
  * Exit status: 0 when no pair overlaps, 1 when one does, 2 on bad usage, a
  * library error or a file that cannot be written. */
@@ -485,17 +485,24 @@ int main(int argc, char **argv) {
          t_prod > 0 ? (double)tests / t_prod : 0.0);
 
   /* Final check: the overlapping pairs (s = 1), then the neighbour pairs
-   * within s = 1.2 and their mu^2 through pw85_scene_contact_function. */
+   * within s = 1.2 (1 where the box cannot hold 1.2) and their mu^2
+   * through pw85_scene_contact_function. */
   long long nov = 0, m = 0;
   int const st2 = pw85_configuration_pairs(s.conf, 1.0, (int)threads, 0, NULL, NULL, NULL, &nov,
                                            NULL);
-  int st = pw85_configuration_pairs(s.conf, 1.2, (int)threads, 0, NULL, NULL, NULL, &m, NULL);
+  /* The shell s = 1.2, or s = 1 where the box cannot hold it. */
+  double shell = 1.2;
+  int st = pw85_configuration_pairs(s.conf, shell, (int)threads, 0, NULL, NULL, NULL, &m, NULL);
+  if (st == PW85_ERR_INVALID_ARGUMENT) {
+    shell = 1.0;
+    st = pw85_configuration_pairs(s.conf, shell, (int)threads, 0, NULL, NULL, NULL, &m, NULL);
+  }
   long long *ij = malloc(3 * (size_t)(m ? m : 1) * sizeof(long long));
   long long *pairs = malloc(2 * (size_t)(m ? m : 1) * sizeof(long long));
   pw85_result *res = malloc((size_t)(m ? m : 1) * sizeof(pw85_result));
   if (!ij || !pairs || !res) return 2;
   if (st == PW85_ERR_CAPACITY)
-    st = pw85_configuration_pairs(s.conf, 1.2, (int)threads, m, ij, ij + m, NULL, &m, NULL);
+    st = pw85_configuration_pairs(s.conf, shell, (int)threads, m, ij, ij + m, NULL, &m, NULL);
   for (long long k = 0; k < m; ++k) pairs[2 * k] = ij[k], pairs[2 * k + 1] = ij[m + k];
   if (st == PW85_OK && m > 0)
     st = pw85_scene_contact_function(n, s.x, s.q, box, m, pairs, PW85_METHOD_DEFAULT, res, NULL,
@@ -506,10 +513,10 @@ int main(int argc, char **argv) {
     if (res[k].mu2 < mu2_min) mu2_min = res[k].mu2;
     if (!(res[k].mu2 >= 1.0)) ++bad;
   }
-  printf("check: %lld neighbour pairs (mu^2 < 1.44), min mu^2 = %.6f "
+  printf("check: %lld neighbour pairs (mu^2 < %.4g), min mu^2 = %.6f "
          "(pw85_scene_contact_function: %s), %lld pairs with mu^2 < 1, %lld overlapping "
          "(pw85_configuration_pairs: %s)\n",
-         m, mu2_min, pw85_strerror(st), bad, nov,
+         m, shell * shell, mu2_min, pw85_strerror(st), bad, nov,
          pw85_strerror(st2 == PW85_ERR_CAPACITY ? PW85_OK : st2));
   int const rc = (st != PW85_OK || (st2 != PW85_OK && st2 != PW85_ERR_CAPACITY) || file_error)
                      ? 2
