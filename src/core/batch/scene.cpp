@@ -460,8 +460,10 @@ struct Sorted {
   double wrap_error = 0;
 };
 
+// The per-particle loops run on nt threads (each particle's values depend on
+// it alone); the counting sort itself is serial.
 Status sort_by_cell(Scene const &scene, double rho_scaled, double radius_scale, double s2,
-                    Sorted &q) noexcept {
+                    int nt, Sorted &q) noexcept {
   long long const n = scene.n;
   Box const &box = scene.box;
   double lo[3], hi[3];
@@ -471,6 +473,7 @@ Status sort_by_cell(Scene const &scene, double rho_scaled, double radius_scale, 
   if (box.periodic) {
     // Fractional coordinates, once; the wrap error grows with the largest.
     double fmax = 0;
+#pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static) reduction(max : fmax)
     for (long long i = 0; i < n; ++i) {
       double *f = frac.data + 3 * i;
       fractional(box, scene.centres + 3 * i, f);
@@ -498,16 +501,18 @@ Status sort_by_cell(Scene const &scene, double rho_scaled, double radius_scale, 
     return kNoMemory;
   long long *start = q.start.data;
   for (long long c = 0; c <= cells; ++c) start[c] = 0;
+#pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static)
   for (long long i = 0; i < n; ++i) {
     long long cc[3];
     if (box.periodic) cell_coords_fractional(q.grid, frac.data + 3 * i, cc);
     else cell_coords(q.grid, scene.centres + 3 * i, cc);
     cell_of.data[i] = cell_id(q.grid, cc);
-    ++start[cell_of.data[i] + 1];
   }
+  for (long long i = 0; i < n; ++i) ++start[cell_of.data[i] + 1];
   for (long long c = 0; c < cells; ++c) start[c + 1] += start[c];
   std::memcpy(fill.data, start, static_cast<size_t>(cells) * sizeof(long long));
   for (long long i = 0; i < n; ++i) q.order.data[fill.data[cell_of.data[i]]++] = i;
+#pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static)
   for (long long k = 0; k < n; ++k) {
     long long const i = q.order.data[k];
     double const *c = scene.centres + 3 * i;
@@ -745,7 +750,8 @@ Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacit
   double const radius_scale = s * (1 + 4 * kMargin);
   double const rho = 2 * scene.radius_max * radius_scale * (1 + kMargin);
   Sorted sorted;
-  Status const sort_status = sort_by_cell(scene, rho, radius_scale, s2, sorted);
+  Status const sort_status =
+      sort_by_cell(scene, rho, radius_scale, s2, batch::threads_for(nthreads, n), sorted);
   if (sort_status != kOk) return sort_status;
   CellGrid const &grid = sorted.grid;
   long long const cells = grid.cells;
