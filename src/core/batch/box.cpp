@@ -18,6 +18,42 @@ namespace {
 
 constexpr double kMaxCount = 0x1p50;  // largest count computed (box.hpp)
 
+// Whether a - b is exact in floating point (the error term of Knuth's
+// two-sum is zero).
+bool difference_exact(double a, double b) noexcept {
+  double const s = a - b;
+  double const bb = s - a;
+  return (a - (s - bb)) + (-b - bb) == 0.0;
+}
+
+// Whether the subtraction v - n L of the wrap, n its rounded count, is
+// exact with |n| <= 1: Sterbenz's lemma applies when L/2 <= |v| <= 2 L, and
+// |v| <= 2 L follows from |n| = 1.
+bool unit_step_exact(double v, double n, double len) noexcept {
+  return std::fabs(n) <= 1.0 && 2.0 * std::fabs(v) >= len;
+}
+
+}  // namespace
+
+bool wrap_exact(Box const &b, double const d[3], double nz, double ny, double nx) noexcept {
+  double x = d[0], y = d[1], z = d[2];
+  if (nz != 0.0) {
+    if (!unit_step_exact(z, nz, b.length[2])) return false;
+    if (b.tilted && !(difference_exact(y, b.yz_lz * nz) && difference_exact(x, b.xz_lz * nz)))
+      return false;
+  }
+  y -= b.yz_lz * nz;
+  x -= b.xz_lz * nz;
+  if (ny != 0.0) {
+    if (!unit_step_exact(y, ny, b.length[1])) return false;
+    if (b.tilted && !difference_exact(x, b.xy_ly * ny)) return false;
+  }
+  x -= b.xy_ly * ny;
+  return nx == 0.0 || unit_step_exact(x, nx, b.length[0]);
+}
+
+namespace {
+
 // An exact sum of at most kCapacity doubles.
 struct Expansion {
   static constexpr int kCapacity = 24;

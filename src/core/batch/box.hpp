@@ -83,51 +83,36 @@ inline double round_away(double x) noexcept {
 // point wrap cannot certify.
 Status minimum_image_exact(Box const &b, double d[3]) noexcept;
 
-namespace detail {
-
-// Whether a - b is exact in floating point (the error term of Knuth's
-// two-sum is zero).
-inline bool difference_exact(double a, double b) noexcept {
-  double const s = a - b;
-  double const bb = s - a;
-  return (a - (s - bb)) + (-b - bb) == 0.0;
-}
-
-// Whether the subtraction v - n L of the wrap, n = +-1 its rounded count,
-// is exact: Sterbenz's lemma applies when L/2 <= |v| <= 2 L, and |v| <= 2 L
-// follows from |n| = 1.
-inline bool unit_step_exact(double v, double n, double len) noexcept {
-  return std::fabs(n) <= 1.0 && 2.0 * std::fabs(v) >= len;
-}
-
-}  // namespace detail
+// Whether HOOMD's wrap of d in floating point, with the counts nz, ny, nx
+// it rounded, performed only exact operations: counts 0 or +-1, each
+// subtraction of a length exact by Sterbenz's lemma, each subtraction of a
+// tilt offset with a zero two-sum error. Out of line: taken only by pairs
+// that may wrap.
+bool wrap_exact(Box const &b, double const d[3], double nz, double ny, double nx) noexcept;
 
 // d (periodic box b, every component finite) replaced by its image
 // (definition at the top of this file); kOk, or kInvalidArgument with d
 // unchanged. The common case takes HOOMD's wrap in floating point, accepted
-// only when every one of its operations is exact (counts 0 or +-1, each
-// subtraction certified): then it is the exact image. Anything else goes to
+// when no count is needed (the pair does not wrap) or wrap_exact certifies
+// it: then it is the exact image. Anything else goes to
 // minimum_image_exact.
-inline Status minimum_image(Box const &b, double d[3]) noexcept {
+[[gnu::always_inline]] inline Status minimum_image(Box const &b, double d[3]) noexcept {
   double x = d[0], y = d[1], z = d[2];
-  double const nz = round_away(z * b.inv_length[2]);
-  if (nz != 0.0 &&
-      (!detail::unit_step_exact(z, nz, b.length[2]) ||
-       (b.tilted && !(detail::difference_exact(y, b.yz_lz * nz) &&
-                      detail::difference_exact(x, b.xz_lz * nz)))))
-    return minimum_image_exact(b, d);
+  double const qz = z * b.inv_length[2], nz = round_away(qz);
   z -= b.length[2] * nz;
   y -= b.yz_lz * nz;
   x -= b.xz_lz * nz;
-  double const ny = round_away(y * b.inv_length[1]);
-  if (ny != 0.0 && (!detail::unit_step_exact(y, ny, b.length[1]) ||
-                    (b.tilted && !detail::difference_exact(x, b.xy_ly * ny))))
-    return minimum_image_exact(b, d);
+  double const qy = y * b.inv_length[1], ny = round_away(qy);
   y -= b.length[1] * ny;
   x -= b.xy_ly * ny;
-  double const nx = round_away(x * b.inv_length[0]);
-  if (nx != 0.0 && !detail::unit_step_exact(x, nx, b.length[0])) return minimum_image_exact(b, d);
+  double const qx = x * b.inv_length[0], nx = round_away(qx);
   x -= b.length[0] * nx;
+  // A count is 0 exactly when its quotient is below 1/2 in magnitude, so a
+  // sum of the |q| (those of round_away, shared) below 1/2 means no wrap; a
+  // larger sum, an infinity or a NaN (a subnormal length: 1 / L = inf) goes
+  // to wrap_exact.
+  if (!(std::fabs(qz) + std::fabs(qy) + std::fabs(qx) < 0.5) && !wrap_exact(b, d, nz, ny, nx))
+    return minimum_image_exact(b, d);
   d[0] = x;
   d[1] = y;
   d[2] = z;

@@ -65,7 +65,7 @@ struct Scene {
 // box) a pair whose bounding spheres reach past max_reach or whose image
 // minimum_image refuses. A non-finite centre or matrix is passed on to the
 // one-pair function, which reports it.
-inline Status scene_r12(Scene const &s, long long k, double r12[3], long long &i,
+[[gnu::always_inline]] inline Status scene_r12(Scene const &s, long long k, double r12[3], long long &i,
                         long long &j) noexcept {
   if (!pair_r12(s.n, s.centres, s.pairs, k, r12, i, j)) return kInvalidArgument;
   if (!s.box.periodic) return kOk;
@@ -107,8 +107,8 @@ struct PrefetchedArrayPair {
 // Pair k of a scene (scene_r12, with the scene prefetch), for the lane
 // blocks; false: the pair failed scene_r12.
 struct ScenePair {
-  Scene const &s;
-  bool operator()(long long k, double *buf, double const *&r, double const *&a,
+  Scene s;  // a copy: its fields stay in registers in the lanes' loops
+  [[gnu::always_inline]] bool operator()(long long k, double *buf, double const *&r, double const *&a,
                   double const *&b) const noexcept {
     prefetch_pair(s.n, s.centres, s.q, s.pairs, s.m, k);
     long long i, j;
