@@ -129,6 +129,11 @@
  * nearest double, so +Inf above DBL_MAX and a subnormal or 0 below DBL_MIN;
  * the other outputs are as for PW85_OK. docs/stability.md lists where. */
 #define PW85_ERR_RANGE (-7)
+/* An output array is too small: the count it needs is returned, nothing
+ * else is written (pw85_configuration_pairs()). */
+#define PW85_ERR_CAPACITY (-8)
+/* Memory could not be allocated (pw85_configuration_*); nothing changed. */
+#define PW85_ERR_NO_MEMORY (-9)
 
 PW85_BEGIN_DECLS
 
@@ -626,6 +631,95 @@ PW85_API int pw85_scene_contact_function(long long n, double const *centres, dou
 PW85_API int pw85_scene_contact(long long n, double const *centres, double const *q,
                                 double const box[6], long long m, long long const *pairs,
                                 pw85_contact_t *c, int *status, int nthreads);
+
+/* ---- Configurations: N ellipsoids in a box --------------------------------
+ * docs/scene.md. A pw85_configuration holds n ellipsoids (centre i at
+ * centres[3i..3i+2], matrix i at q[6i..6i+5], copied) and an optional
+ * periodic box (the convention of the pw85_scene_* calls above), and finds
+ * the pairs among them: the overlapping pairs, the pairs within a scale
+ * factor, the particles a trial move would overlap. (The name is not
+ * "scene": the pw85_scene_* calls take index pairs the caller found; a
+ * configuration finds them.) Every pair (i, j), i < j, is judged on r12 =
+ * c_j - c_i, or its image given by the pw85_scene_* calls' wrap, with the
+ * exact overlap predicate, so its verdict is that of pw85_scene_overlap()
+ * on the pair (i, j). A configuration is used by one thread at a time when
+ * it is changed (update, move); the other calls may run concurrently on
+ * the same configuration. Memory: O(n), about 140 bytes per particle, and
+ * a pairs query allocates O(n + pairs) more for its duration. */
+typedef struct pw85_configuration pw85_configuration;
+
+/* Creates a configuration of n >= 0 ellipsoids; box (may be NULL: no
+ * periodicity) as for pw85_scene_overlap(). Each centre must be finite
+ * and, with a box, at most 2^20 box lengths from the origin (2^500 without
+ * one); each matrix finite and positive definite (as pw85_overlap() checks
+ * it); with a box, the two largest bounding spheres must satisfy the
+ * pw85_scene_* calls' bound (radii summing to at most min(Lx, Ly, Lz)/2).
+ * Returns PW85_OK and *configuration, or PW85_ERR_INVALID_ARGUMENT (NULL
+ * pointer, n < 0, invalid box, NaN or infinite value, spheres too large for
+ * the box), PW85_ERR_NOT_SPD, PW85_ERR_RANGE (a centre too far out) or
+ * PW85_ERR_NO_MEMORY, with *configuration unchanged; *bad (may be NULL)
+ * receives the index of the particle at fault, or -1. */
+PW85_API int pw85_configuration_create(long long n, double const *centres, double const *q,
+                                       double const box[6],
+                                       pw85_configuration **configuration, long long *bad);
+
+/* Frees a configuration (NULL: nothing). */
+PW85_API void pw85_configuration_destroy(pw85_configuration *configuration);
+
+/* Replaces the particles (and the box) of a configuration, as
+ * pw85_configuration_create() would set them; no memory is allocated when
+ * n does not exceed the largest n the configuration has held. On error
+ * (statuses and *bad as for pw85_configuration_create()) the configuration
+ * is unchanged. */
+PW85_API int pw85_configuration_update(pw85_configuration *configuration, long long n,
+                                       double const *centres, double const *q,
+                                       double const box[6], long long *bad);
+
+/* Number of particles, or -1 for NULL. */
+PW85_API long long pw85_configuration_size(pw85_configuration const *configuration);
+
+/* The pairs within the scale factor s >= 1: every pair i < j whose
+ * ellipsoids, each scaled by s about its centre (matrices s2 Q, s2 = s s
+ * rounded, each product rounded), overlap, decided exactly by the overlap
+ * predicate; s = 1: the overlapping pairs, each verdict pw85_overlap()'s;
+ * s2 a power of two: the scaled matrices are exact and the pairs are those
+ * with mu^2 < s^2 exactly. Sorted by i, then j, the same for every thread
+ * count. *count receives the number of pairs; when it is <= capacity, i[k],
+ * j[k] receive pair k and mu2[k] (mu2 may be NULL) the contact function of
+ * the unscaled pair by PW85_METHOD_DEFAULT (pw85_contact_function_method()'s
+ * mu2, NaN where that call fails). Returns PW85_OK, PW85_ERR_CAPACITY (more
+ * than capacity pairs: *count set, nothing else written; capacity = 0 with
+ * i, j NULL asks for the count), PW85_ERR_INVALID_ARGUMENT (NULL pointer,
+ * s < 1 or not finite, capacity < 0, nthreads < 0, or with a box s times
+ * the two largest bounding radii summing to more than min(Lx, Ly, Lz)/2),
+ * PW85_ERR_NOT_SPD or PW85_ERR_INACCURATE (as pw85_overlap() on a pair) or
+ * PW85_ERR_NO_MEMORY, with nothing written. examined (may be NULL)
+ * receives two counts of the broad phase: the pairs whose bounding spheres
+ * (scaled by s) intersect, and those of them passed to the exact
+ * predicate. nthreads as for the batch calls. */
+PW85_API int pw85_configuration_pairs(pw85_configuration const *configuration, double s,
+                                      int nthreads, long long capacity, long long *i,
+                                      long long *j, double *mu2, long long *count,
+                                      long long examined[2]);
+
+/* Whether particle i moved to (centre, q) would overlap another particle:
+ * *j receives the smallest index j != i whose ellipsoid it overlaps (the
+ * verdict of the pair as pw85_configuration_pairs() would judge it after
+ * the move), or -1. The configuration is not changed. Returns PW85_OK,
+ * PW85_ERR_INVALID_ARGUMENT (NULL, i out of range, NaN or infinite value,
+ * with a box a bounding sphere too large for it), PW85_ERR_NOT_SPD,
+ * PW85_ERR_RANGE (centre too far out), PW85_ERR_INACCURATE or
+ * PW85_ERR_NO_MEMORY, with *j unchanged. */
+PW85_API int pw85_configuration_test_move(pw85_configuration const *configuration,
+                                          long long i, double const centre[PW85_DIM],
+                                          double const q[PW85_SYM], long long *j);
+
+/* Moves particle i to (centre, q), with no overlap test. Returns as
+ * pw85_configuration_test_move(); on error the configuration is
+ * unchanged. */
+PW85_API int pw85_configuration_move(pw85_configuration *configuration, long long i,
+                                     double const centre[PW85_DIM],
+                                     double const q[PW85_SYM]);
 
 /* ---- Derivatives of the contact function ---------------------------------
  * docs/derivatives.md. */

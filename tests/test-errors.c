@@ -28,7 +28,9 @@ static void test_strerror(void) {
                        PW85_ERR_NOT_ORTHONORMAL,
                        PW85_ERR_UNKNOWN_METHOD,
                        PW85_ERR_INACCURATE,
-                       PW85_ERR_RANGE};
+                       PW85_ERR_RANGE,
+                       PW85_ERR_CAPACITY,
+                       PW85_ERR_NO_MEMORY};
   const char *unknown = pw85_strerror(12345);
   g_assert_nonnull(unknown);
   for (size_t i = 0; i < G_N_ELEMENTS(codes); i++) {

@@ -31,9 +31,12 @@ program test_fortran
   real(c_double) :: hr(3)
   real(c_double) :: quat(4), rot(3, 3), rmat(3, 3), qr(6), ra(3)
   character(len=:), allocatable :: version, message_ok, message_spd
+  type(c_ptr) :: conf
+  real(c_double) :: cc(3, 3), qc(6, 3), mu2s(3), far(3)
+  integer(c_long_long) :: ci(3), cj(3), count, jfound, bad
 
   write (*, '(a)') 'TAP version 13'
-  write (*, '(a)') '1..31'
+  write (*, '(a)') '1..38'
 
   ! Version: the loaded library and the module constant agree.
   version = pw85_version_string()
@@ -254,6 +257,43 @@ program test_fortran
                                        nthreads=1_c_int)
   call check(status == PW85_OK .and. mresv(1)%mu2 > 2.0_c_double * MU2_REF, &
              'pw85_scene_contact_function: box omitted, no periodicity (farther apart)')
+
+  ! Configuration of three particles: the tutorial pair (0, 1) (mu^2 3.36)
+  ! and particle 2 (matrix q2) at x1 + r12/2, which overlaps both.
+  cc(:, 1) = x1
+  cc(:, 2) = x2
+  cc(:, 3) = x1 + 0.5_c_double * r12
+  qc(:, 1) = q1
+  qc(:, 2) = q2
+  qc(:, 3) = q2
+  conf = c_null_ptr
+  status = pw85_configuration_create(3_c_long_long, cc, qc, configuration=conf, bad=bad)
+  call check(status == PW85_OK .and. c_associated(conf) .and. bad == -1 .and. &
+             pw85_configuration_size(conf) == 3, 'pw85_configuration_create: three particles')
+  status = pw85_configuration_pairs(conf, 1.0_c_double, 1_c_int, 3_c_long_long, ci, cj, &
+                                    count=count)
+  call check(status == PW85_OK .and. count == 2 .and. all(ci(1:2) == [0, 1]) .and. &
+             all(cj(1:2) == [2, 2]), 'pw85_configuration_pairs: s = 1, pairs (0, 2), (1, 2)')
+  status = pw85_configuration_pairs(conf, 2.0_c_double, 1_c_int, 3_c_long_long, ci, cj, mu2s, &
+                                    count)
+  call check(status == PW85_OK .and. count == 3 .and. ci(1) == 0 .and. cj(1) == 1 .and. &
+             abs(mu2s(1) - MU2_REF) <= RTOL * MU2_REF, &
+             'pw85_configuration_pairs: s = 2 adds the tutorial pair, its mu^2')
+  status = pw85_configuration_pairs(conf, 2.0_c_double, 1_c_int, 0_c_long_long, count=count)
+  call check(status == PW85_ERR_CAPACITY .and. count == 3, &
+             'pw85_configuration_pairs: capacity 0 gives the count')
+  jfound = -7
+  status = pw85_configuration_test_move(conf, 1_c_long_long, cc(:, 3), q2, jfound)
+  call check(status == PW85_OK .and. jfound == 0, &
+             'pw85_configuration_test_move: onto particle 2, first overlap is particle 0')
+  far = x1 + 100.0_c_double
+  status = pw85_configuration_move(conf, 2_c_long_long, far, q2)
+  call check(status == PW85_OK, 'pw85_configuration_move: particle 2 far away')
+  status = pw85_configuration_pairs(conf, 1.0_c_double, 0_c_int, 3_c_long_long, ci, cj, &
+                                    count=count)
+  call check(status == PW85_OK .and. count == 0, &
+             'pw85_configuration_pairs: no overlap after the move')
+  call pw85_configuration_destroy(conf)
 
   ! Main-program allocatables are not freed automatically at the end; free
   ! them so that LeakSanitizer (sanitizer builds) sees no leak.

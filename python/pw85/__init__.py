@@ -20,6 +20,7 @@ from ._api import (spheroid, ellipsoid, ellipsoid_quat, ellipsoid_rotation, elli
                    scene_overlap, scene_contact_function, scene_contact,
                    scene_contact_derivatives,
                    dca, dca_ex, dca_2d, contact_function_2d)
+from ._scene import Scene
 
 __version__ = _clib.pw85_version().decode()
 
@@ -28,4 +29,4 @@ __all__ = ["Error", "Method", "Status", "status_name", "strerror", "spheroid", "
            "contact_function", "overlap", "contact", "contact_derivatives", "contact_time",
            "scene_overlap", "scene_contact_function", "scene_contact",
            "scene_contact_derivatives", "dca", "dca_ex", "dca_2d", "contact_function_2d",
-           "CONTACT_DTYPE", "DERIVATIVES_DTYPE", "RESULT_DTYPE", "__version__"]
+           "CONTACT_DTYPE", "DERIVATIVES_DTYPE", "RESULT_DTYPE", "Scene", "__version__"]

@@ -1005,18 +1005,23 @@ def _scene(centres, q, pairs, box):
     if p.ndim != 2 or p.shape[1] != 2:
         raise ValueError(f"pairs: expected shape (m, 2), got {p.shape}")
     p = _aligned(np.ascontiguousarray(p, dtype=np.int64))
+    bx = _box(box)
+    return c, qq, p, bx, None if bx is None else bx.ctypes.data
+
+
+def _box(box):
+    """A periodic box {Lx, Ly, Lz, xy, xz, yz} as a float64 array (6,), or
+    None; ValueError for lengths not finite and > 0 or tilts not finite."""
     if box is None:
-        bx, pbox = None, None
-    else:
-        bx = _arr(box, "box", 6, ndim=1)
-        L, t = bx[:3], bx[3:]
-        with np.errstate(over="ignore", invalid="ignore"):
-            tilts_ok = np.all(np.isfinite(t * np.array([L[1], L[2], L[2]])))
-        if not (np.all(np.isfinite(bx)) and np.all(L > 0) and tilts_ok):
-            raise ValueError(f"box: expected {{Lx, Ly, Lz, xy, xz, yz}} with finite lengths > 0 "
-                             f"and finite tilts, got {bx.tolist()}")
-        pbox = bx.ctypes.data
-    return c, qq, p, bx, pbox
+        return None
+    bx = _arr(box, "box", 6, ndim=1)
+    L, t = bx[:3], bx[3:]
+    with np.errstate(over="ignore", invalid="ignore"):
+        tilts_ok = np.all(np.isfinite(t * np.array([L[1], L[2], L[2]])))
+    if not (np.all(np.isfinite(bx)) and np.all(L > 0) and tilts_ok):
+        raise ValueError(f"box: expected {{Lx, Ly, Lz, xy, xz, yz}} with finite lengths > 0 "
+                         f"and finite tilts, got {bx.tolist()}")
+    return bx
 
 
 def _scene_rows(c, qq, p, bx):

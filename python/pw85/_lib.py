@@ -162,6 +162,8 @@ class Status(enum.IntEnum):
     ERR_UNKNOWN_METHOD = -5
     ERR_INACCURATE = -6
     ERR_RANGE = -7
+    ERR_CAPACITY = -8
+    ERR_NO_MEMORY = -9
 
 
 def status_name(status: int) -> str:

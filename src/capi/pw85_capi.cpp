@@ -70,6 +70,10 @@ const char *pw85_strerror(int status) {
       return "result less accurate than the method documents";
     case PW85_ERR_RANGE:
       return "result out of the range of double";
+    case PW85_ERR_CAPACITY:
+      return "output array too small";
+    case PW85_ERR_NO_MEMORY:
+      return "memory allocation failed";
     default:
       return "unknown status";
   }

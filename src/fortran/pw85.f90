@@ -41,6 +41,8 @@ module pw85
   integer(c_int), parameter :: PW85_ERR_UNKNOWN_METHOD = -5
   integer(c_int), parameter :: PW85_ERR_INACCURATE = -6
   integer(c_int), parameter :: PW85_ERR_RANGE = -7
+  integer(c_int), parameter :: PW85_ERR_CAPACITY = -8
+  integer(c_int), parameter :: PW85_ERR_NO_MEMORY = -9
   ! Distance of closest approach : PW85_DCA_THETA_TOL, PW85_DCA_MAX_EVAL.
   real(c_double), parameter :: PW85_DCA_THETA_TOL = 1.0e-8_c_double
   integer(c_int), parameter :: PW85_DCA_MAX_EVAL = 100
@@ -419,6 +421,91 @@ module pw85
       integer(c_int), value :: nthreads
       integer(c_int) :: res
     end function pw85_scene_contact_derivatives
+
+    ! ---- Configurations: N ellipsoids in a box (docs/scene.md) ----
+    ! The handle is a type(c_ptr); indices (i, j, bad) are 0-based, as in C.
+    ! int pw85_configuration_create(long long n, double const *centres,
+    !     double const *q, double const box[6],
+    !     pw85_configuration **configuration, long long *bad)
+    function pw85_configuration_create(n, centres, q, box, configuration, bad) &
+        bind(C, name="pw85_configuration_create") result(status)
+      import :: c_double, c_int, c_long_long, c_ptr
+      integer(c_long_long), value :: n
+      real(c_double), intent(in) :: centres(3, *), q(6, *)
+      real(c_double), intent(in), optional :: box(6)
+      type(c_ptr), intent(inout) :: configuration
+      integer(c_long_long), intent(out), optional :: bad
+      integer(c_int) :: status
+    end function pw85_configuration_create
+
+    ! void pw85_configuration_destroy(pw85_configuration *configuration)
+    subroutine pw85_configuration_destroy(configuration) &
+        bind(C, name="pw85_configuration_destroy")
+      import :: c_ptr
+      type(c_ptr), value :: configuration
+    end subroutine pw85_configuration_destroy
+
+    ! int pw85_configuration_update(pw85_configuration *configuration,
+    !     long long n, double const *centres, double const *q,
+    !     double const box[6], long long *bad)
+    function pw85_configuration_update(configuration, n, centres, q, box, bad) &
+        bind(C, name="pw85_configuration_update") result(status)
+      import :: c_double, c_int, c_long_long, c_ptr
+      type(c_ptr), value :: configuration
+      integer(c_long_long), value :: n
+      real(c_double), intent(in) :: centres(3, *), q(6, *)
+      real(c_double), intent(in), optional :: box(6)
+      integer(c_long_long), intent(out), optional :: bad
+      integer(c_int) :: status
+    end function pw85_configuration_update
+
+    ! long long pw85_configuration_size(pw85_configuration const *configuration)
+    function pw85_configuration_size(configuration) &
+        bind(C, name="pw85_configuration_size") result(n)
+      import :: c_long_long, c_ptr
+      type(c_ptr), value :: configuration
+      integer(c_long_long) :: n
+    end function pw85_configuration_size
+
+    ! int pw85_configuration_pairs(pw85_configuration const *configuration,
+    !     double s, int nthreads, long long capacity, long long *i,
+    !     long long *j, double *mu2, long long *count, long long examined[2])
+    function pw85_configuration_pairs(configuration, s, nthreads, capacity, i, j, mu2, count, &
+        examined) bind(C, name="pw85_configuration_pairs") result(status)
+      import :: c_double, c_int, c_long_long, c_ptr
+      type(c_ptr), value :: configuration
+      real(c_double), value :: s
+      integer(c_int), value :: nthreads
+      integer(c_long_long), value :: capacity
+      integer(c_long_long), intent(out), optional :: i(*), j(*)
+      real(c_double), intent(out), optional :: mu2(*)
+      integer(c_long_long), intent(out) :: count
+      integer(c_long_long), intent(out), optional :: examined(2)
+      integer(c_int) :: status
+    end function pw85_configuration_pairs
+
+    ! int pw85_configuration_test_move(pw85_configuration const *configuration,
+    !     long long i, double const centre[3], double const q[6], long long *j)
+    function pw85_configuration_test_move(configuration, i, centre, q, j) &
+        bind(C, name="pw85_configuration_test_move") result(status)
+      import :: c_double, c_int, c_long_long, c_ptr
+      type(c_ptr), value :: configuration
+      integer(c_long_long), value :: i
+      real(c_double), intent(in) :: centre(3), q(6)
+      integer(c_long_long), intent(inout) :: j
+      integer(c_int) :: status
+    end function pw85_configuration_test_move
+
+    ! int pw85_configuration_move(pw85_configuration *configuration,
+    !     long long i, double const centre[3], double const q[6])
+    function pw85_configuration_move(configuration, i, centre, q) &
+        bind(C, name="pw85_configuration_move") result(status)
+      import :: c_double, c_int, c_long_long, c_ptr
+      type(c_ptr), value :: configuration
+      integer(c_long_long), value :: i
+      real(c_double), intent(in) :: centre(3), q(6)
+      integer(c_int) :: status
+    end function pw85_configuration_move
 
     ! ---- First contact time (docs/contact_time.md) ----
     ! int pw85_contact_time(double const r12[3], double const v12[3],

@@ -7,16 +7,16 @@
  *
  * N spheroids (equatorial semi-axis a = 0.5, polar semi-axis c = aspect * a:
  * prolate for aspect > 1, oblate for aspect < 1) in a periodic cubic box
- * whose side gives the packing fraction phi. Minimum-image convention; cell
- * lists with cells of side >= 2 max(a, c) (so that only the 27 neighbouring
- * cells can hold an overlapping partner; at least 3 cells per side are
- * required). Start: the spheroids are aligned with z on a lattice whose
+ * whose side gives the packing fraction phi, held by the configuration object
+ * of libpw85 (pw85_configuration_*, docs/scene.md: its cell grid, minimum
+ * image and exact overlap verdicts). Start: the spheroids are aligned with z on a lattice whose
  * spacing is >= 2c along z and >= 2a along x and y (non-overlapping). Monte
  * Carlo: sweeps of N trial moves (random particle, then with probability
  * 1/2 a translation uniform in [-dr, dr]^3, otherwise a rotation of its
  * axis u to (u + dtheta g) / |u + dtheta g|, g a standard normal vector;
- * both proposals are symmetric); a move is rejected as soon as pw85_overlap
- * reports an overlap with a neighbour. E equilibration sweeps scale dr and
+ * both proposals are symmetric); pw85_configuration_test_move rejects a move
+ * that overlaps another particle, pw85_configuration_move commits the
+ * others. E equilibration sweeps scale dr and
  * dtheta after each sweep by a power of the ratio of their acceptance to
  * the target (below); the S production sweeps keep them fixed
  * (detailed balance) and are reported in B blocks: acceptance and the
@@ -27,10 +27,11 @@
  * axes). --xyz and --gsd write the configuration at production sweep 0
  * (after equilibration) and at the end of each block (extended XYZ for
  * OVITO, GSD for HOOMD-blue; S2 of the configuration in both, in the GSD
- * file as log/pw85/S2). Prints the number of overlap
- * tests per second of the production loop, then checks with
- * pw85_contact_function_batch over every neighbour pair that no pair has
- * mu^2 < 1 (and with pw85_overlap_batch that no pair overlaps).
+ * file as log/pw85/S2). Prints the number of trial moves per second of the
+ * production loop, then checks that no pair overlaps
+ * (pw85_configuration_pairs, s = 1) and the smallest mu^2 of the neighbour
+ * pairs within s = 1.2 or 1 (pw85_configuration_pairs, then
+ * pw85_scene_contact_function on those pairs).
  * Exit status: 0 when no pair overlaps, 1 when one does, 2 on bad usage, a
  * library error or a file that cannot be written. */
 #define _POSIX_C_SOURCE 200809L
@@ -52,14 +53,10 @@ typedef struct {
   int n;
   double L;   /* box side */
   double a, c;
-  int nc;     /* cells per side */
-  double cell;
   double *x;  /* centres, 3n, in [0, L) */
   double *u;  /* unit axes, 3n */
   double *q;  /* quadratic forms, 6n */
-  int *cell_of;
-  int **members; /* members[cell][0..count[cell]-1] */
-  int *count, *cap;
+  pw85_configuration *conf; /* the same particles in the periodic box */
 } scene_t;
 
 static double wrap(double v, double L) {
@@ -69,79 +66,10 @@ static double wrap(double v, double L) {
   return v;
 }
 
-static int cell_index(const scene_t *s, const double *p) {
-  int idx[3];
-  for (int d = 0; d < 3; ++d) {
-    idx[d] = (int)(p[d] / s->cell);
-    if (idx[d] >= s->nc) idx[d] = s->nc - 1;
-    if (idx[d] < 0) idx[d] = 0;
-  }
-  return (idx[0] * s->nc + idx[1]) * s->nc + idx[2];
-}
-
-/* The tool's only response to a failed allocation: a message and exit
- * status 2 (as for bad arguments), without a core dump. */
-static void out_of_memory(void) {
-  fputs("pw85_mc: out of memory\n", stderr);
-  exit(2);
-}
-
-static void cell_add(scene_t *s, int c, int i) {
-  if (s->count[c] == s->cap[c]) {
-    s->cap[c] = s->cap[c] ? 2 * s->cap[c] : 8;
-    int *grown = realloc(s->members[c], (size_t)s->cap[c] * sizeof(int));
-    if (!grown) out_of_memory();
-    s->members[c] = grown;
-  }
-  s->members[c][s->count[c]++] = i;
-  s->cell_of[i] = c;
-}
-
-static void cell_remove(scene_t *s, int c, int i) {
-  for (int k = 0; k < s->count[c]; ++k)
-    if (s->members[c][k] == i) {
-      s->members[c][k] = s->members[c][--s->count[c]];
-      return;
-    }
-}
-
-static void free_scene(scene_t *s, int ncells) {
-  for (int c = 0; c < ncells; ++c) free(s->members[c]);
-  free(s->members), free(s->count), free(s->cap), free(s->cell_of);
+static void free_scene(scene_t *s) {
+  pw85_configuration_destroy(s->conf);
   free(s->x), free(s->u), free(s->q);
 }
-
-/* Minimum-image separation r = p_j - p_i. */
-static void min_image(const scene_t *s, const double *pi, const double *pj, double r[3]) {
-  for (int d = 0; d < 3; ++d) {
-    double v = pj[d] - pi[d];
-    v -= s->L * nearbyint(v / s->L);
-    r[d] = v;
-  }
-}
-
-/* Calls fn(j) for every particle j != i in the 27 cells around position p. */
-#define FOR_NEIGHBOURS(s, p, i, j, BODY)                                      \
-  do {                                                                        \
-    int ci_[3];                                                               \
-    int const c0_ = cell_index((s), (p));                                     \
-    ci_[0] = c0_ / ((s)->nc * (s)->nc);                                       \
-    ci_[1] = (c0_ / (s)->nc) % (s)->nc;                                       \
-    ci_[2] = c0_ % (s)->nc;                                                   \
-    for (int dx_ = -1; dx_ <= 1; ++dx_)                                       \
-      for (int dy_ = -1; dy_ <= 1; ++dy_)                                     \
-        for (int dz_ = -1; dz_ <= 1; ++dz_) {                                 \
-          int const cx_ = (ci_[0] + dx_ + (s)->nc) % (s)->nc;                 \
-          int const cy_ = (ci_[1] + dy_ + (s)->nc) % (s)->nc;                 \
-          int const cz_ = (ci_[2] + dz_ + (s)->nc) % (s)->nc;                 \
-          int const cc_ = (cx_ * (s)->nc + cy_) * (s)->nc + cz_;              \
-          for (int k_ = 0; k_ < (s)->count[cc_]; ++k_) {                      \
-            int const j = (s)->members[cc_][k_];                              \
-            if (j == (i)) continue;                                           \
-            BODY                                                              \
-          }                                                                   \
-        }                                                                     \
-  } while (0)
 
 static double now(void) {
   struct timespec t;
@@ -239,7 +167,8 @@ static int write_gsd(gsd_writer *w, const scene_t *s, uint64_t sweep, double s2,
 }
 
 /* One trial move of particle i: a rotation (rotate = 1) or a translation.
- * Returns 1 when accepted, 0 when rejected, -1 on a library error. */
+ * Returns 1 when accepted, 0 when rejected, -1 on a library error. tests
+ * counts the trials. */
 static int trial_move(scene_t *s, rng_t *g, int i, int rotate, double dr, double dtheta,
                       long long *tests) {
   double xn[3], un[3], qn[6];
@@ -259,31 +188,18 @@ static int trial_move(scene_t *s, rng_t *g, int i, int rotate, double dr, double
   } else {
     for (int d = 0; d < 3; ++d) xn[d] = wrap(xn[d] + dr * (2.0 * rng_uniform(g) - 1.0), s->L);
   }
-  int overlap = 0, lib_error = 0;
-  FOR_NEIGHBOURS(s, xn, i, j, {
-    if (!overlap && !lib_error) {
-      double r[3];
-      min_image(s, xn, s->x + 3 * j, r);
-      int const v = pw85_overlap(r, qn, s->q + 6 * j);
-      ++*tests;
-      if (v < 0) {
-        fprintf(stderr, "pw85_mc: pw85_overlap: %s\n", pw85_strerror(v));
-        lib_error = 1;
-      } else if (v == 1) {
-        overlap = 1;
-      }
-    }
-  });
-  if (lib_error) return -1;
-  if (overlap) return 0;
-  int const c_old = s->cell_of[i], c_new = cell_index(s, xn);
+  long long j = -1;
+  int st = pw85_configuration_test_move(s->conf, i, xn, qn, &j);
+  ++*tests;
+  if (st == PW85_OK && j >= 0) return 0;
+  if (st == PW85_OK) st = pw85_configuration_move(s->conf, i, xn, qn);
+  if (st != PW85_OK) {
+    fprintf(stderr, "pw85_mc: particle %d: %s\n", i, pw85_strerror(st));
+    return -1;
+  }
   memcpy(s->x + 3 * i, xn, sizeof xn);
   memcpy(s->u + 3 * i, un, sizeof un);
   memcpy(s->q + 6 * i, qn, sizeof qn);
-  if (c_new != c_old) {
-    cell_remove(s, c_old, i);
-    cell_add(s, c_new, i);
-  }
   return 1;
 }
 
@@ -363,21 +279,8 @@ int main(int argc, char **argv) {
   s.n = (int)n;
   s.a = 0.5;
   s.c = aspect * s.a;
-  double const rmax = s.c > s.a ? s.c : s.a;
   double const volume = 4.0 / 3.0 * 3.141592653589793 * s.a * s.a * s.c;
   s.L = cbrt(n * volume / phi);
-  double const ncd = floor(s.L / (2.0 * rmax));
-  if (ncd < 3) {
-    fprintf(stderr,
-            "pw85_mc: box too small for cell lists (L = %g < 6 max(a, c)); increase --n\n", s.L);
-    return 2;
-  }
-  if (ncd > 1000) {
-    fprintf(stderr, "pw85_mc: box too large for cell lists (%g cells per side)\n", ncd);
-    return 2;
-  }
-  s.nc = (int)ncd;
-  s.cell = s.L / s.nc;
   /* Lattice: nz layers of spacing >= 2c along z, nxy x nxy sites per layer
    * of spacing >= 2a. */
   double const nzd = floor(s.L / (2.0 * s.c));
@@ -409,14 +312,9 @@ int main(int argc, char **argv) {
   s.x = malloc(3 * (size_t)n * sizeof(double));
   s.u = malloc(3 * (size_t)n * sizeof(double));
   s.q = malloc(6 * (size_t)n * sizeof(double));
-  s.cell_of = malloc((size_t)n * sizeof(int));
   float *fbuf = malloc(4 * (size_t)n * sizeof(float));
   double *qbuf = malloc(4 * (size_t)n * sizeof(double));
-  int const ncells = s.nc * s.nc * s.nc;
-  s.members = calloc((size_t)ncells, sizeof(int *));
-  s.count = calloc((size_t)ncells, sizeof(int));
-  s.cap = calloc((size_t)ncells, sizeof(int));
-  if (!s.x || !s.u || !s.q || !s.cell_of || !fbuf || !qbuf || !s.members || !s.count || !s.cap) return 2;
+  if (!s.x || !s.u || !s.q || !fbuf || !qbuf) return 2;
   for (int i = 0; i < n; ++i) {
     int const iz = i / (nxy * nxy), iy = (i / nxy) % nxy, ix = i % nxy;
     s.x[3 * i] = (ix + 0.5) * s.L / nxy;
@@ -424,12 +322,35 @@ int main(int argc, char **argv) {
     s.x[3 * i + 2] = (iz + 0.5) * s.L / nz;
     s.u[3 * i] = 0.0, s.u[3 * i + 1] = 0.0, s.u[3 * i + 2] = 1.0;
     pw85_spheroid(s.a, s.c, s.u + 3 * i, s.q + 6 * i);
-    cell_add(&s, cell_index(&s, s.x + 3 * i), i);
+  }
+  double const box[6] = {s.L, s.L, s.L, 0.0, 0.0, 0.0};
+  /* The box must hold every orientation: the library's bound on two
+   * bounding spheres (radius at most sqrt(trace Q) = sqrt(2 a^2 + c^2),
+   * whatever the rotation) against half the side. */
+  if (2.0 * sqrt(2.0 * s.a * s.a + s.c * s.c) > 0.5 * s.L * (1.0 - 1e-9)) {
+    fprintf(stderr, "pw85_mc: box %g too small for the spheroids (side < 4 sqrt(2 a^2 + c^2)); "
+            "increase --n\n", s.L);
+    free_scene(&s);
+    free(fbuf), free(qbuf);
+    if (xyz) fclose(xyz);
+    if (have_gsd) gsd_close(&gsd);
+    return 2;
+  }
+  long long bad_particle = -1;
+  int const created = pw85_configuration_create(n, s.x, s.q, box, &s.conf, &bad_particle);
+  if (created != PW85_OK) {
+    fprintf(stderr, "pw85_mc: the box (side %g) cannot hold the particles: %s (particle %lld); "
+            "increase --n\n", s.L, pw85_strerror(created), bad_particle);
+    free_scene(&s);
+    free(fbuf), free(qbuf);
+    if (xyz) fclose(xyz);
+    if (have_gsd) gsd_close(&gsd);
+    return 2;
   }
   printf("pw85_mc: %ld %s spheroids (a = %g, c = %g), packing fraction %g, box %.4g, "
-         "%d^3 cells, seed %llu\n",
+         "seed %llu\n",
          n, s.c > s.a ? "prolate" : (s.c < s.a ? "oblate" : "spherical"), s.a, s.c, phi, s.L,
-         s.nc, (unsigned long long)seed);
+         (unsigned long long)seed);
 
   rng_t g = {seed};
   double dr = 0.4 * s.a, dtheta = 0.4;
@@ -510,78 +431,59 @@ int main(int argc, char **argv) {
   if (lib_error) {
     if (xyz) fclose(xyz);
     if (have_gsd) gsd_close(&gsd);
-    free_scene(&s, ncells);
+    free_scene(&s);
     free(fbuf), free(qbuf);
     return 2;
   }
   if (xyz && fclose(xyz) != 0) file_error = 1;
   if (have_gsd && gsd_close(&gsd) != 0) file_error = 1;
   if (file_error) fprintf(stderr, "pw85_mc: writing the configuration failed\n");
-  printf("Monte Carlo: %ld sweeps, %lld moves, acceptance rate %.3f, %lld overlap tests in %.3f s "
-         "(%.3g tests/s)\n",
+  printf("Monte Carlo: %ld sweeps, %lld moves, acceptance rate %.3f, %lld trial moves tested in "
+         "%.3f s (%.3g trials/s)\n",
          sweeps, moves, moves ? (double)accepted / (double)moves : 0.0, tests, t_prod,
          t_prod > 0 ? (double)tests / t_prod : 0.0);
 
-  /* Final check over every neighbour pair (i < j). The batch functions take
-   * r12 = centres[j] - centres[i]: the periodic image of j nearest to i is
-   * stored as an extra "ellipsoid" n + k with the matrix of j. */
-  long long m = 0, cap_pairs = 16 * (long long)n;
-  long long *pairs = malloc(2 * (size_t)cap_pairs * sizeof(long long));
-  double *img = malloc(3 * (size_t)cap_pairs * sizeof(double));
-  if (!pairs || !img) return 2;
-  for (int i = 0; i < n; ++i) {
-    FOR_NEIGHBOURS(&s, s.x + 3 * i, i, j, {
-      if (j > i) {
-        if (m == cap_pairs) {
-          cap_pairs *= 2;
-          long long *grown_pairs = realloc(pairs, 2 * (size_t)cap_pairs * sizeof(long long));
-          if (!grown_pairs) out_of_memory();
-          pairs = grown_pairs;
-          double *grown_img = realloc(img, 3 * (size_t)cap_pairs * sizeof(double));
-          if (!grown_img) out_of_memory();
-          img = grown_img;
-        }
-        double r[3];
-        min_image(&s, s.x + 3 * i, s.x + 3 * j, r);
-        for (int d = 0; d < 3; ++d) img[3 * m + d] = s.x[3 * i + d] + r[d];
-        pairs[2 * m] = i;
-        pairs[2 * m + 1] = j; /* replaced by n + m below */
-        ++m;
-      }
-    });
+  /* Final check: the overlapping pairs (s = 1), then the neighbour pairs
+   * within s = 1.2 (1 where the box cannot hold 1.2) and their mu^2
+   * through pw85_scene_contact_function. */
+  long long nov = 0, m = 0;
+  int const st2 = pw85_configuration_pairs(s.conf, 1.0, (int)threads, 0, NULL, NULL, NULL, &nov,
+                                           NULL);
+  /* The shell s = 1.2, or s = 1 where the box cannot hold it. */
+  double shell = 1.2;
+  int st = pw85_configuration_pairs(s.conf, shell, (int)threads, 0, NULL, NULL, NULL, &m, NULL);
+  if (st == PW85_ERR_INVALID_ARGUMENT) {
+    shell = 1.0;
+    st = pw85_configuration_pairs(s.conf, shell, (int)threads, 0, NULL, NULL, NULL, &m, NULL);
   }
-  long long const ntot = n + m;
-  double *centres = malloc(3 * (size_t)ntot * sizeof(double));
-  double *qall = malloc(6 * (size_t)ntot * sizeof(double));
-  double *out = malloc(2 * (size_t)(m ? m : 1) * sizeof(double));
-  int *ov = malloc((size_t)(m ? m : 1) * sizeof(int));
-  int *status = malloc((size_t)(m ? m : 1) * sizeof(int));
-  if (!centres || !qall || !out || !ov || !status) return 2;
-  memcpy(centres, s.x, 3 * (size_t)n * sizeof(double));
-  memcpy(qall, s.q, 6 * (size_t)n * sizeof(double));
-  for (long long k = 0; k < m; ++k) {
-    long long const j = pairs[2 * k + 1];
-    memcpy(centres + 3 * (n + k), img + 3 * k, 3 * sizeof(double));
-    memcpy(qall + 6 * (n + k), s.q + 6 * j, 6 * sizeof(double));
-    pairs[2 * k + 1] = n + k;
-  }
-  int const st = pw85_contact_function_batch(ntot, centres, qall, m, pairs, out, status, (int)threads);
-  int const st2 = pw85_overlap_batch(ntot, centres, qall, m, pairs, ov, NULL, (int)threads);
-  long long bad = 0, nov = 0;
+  long long *ij = malloc(3 * (size_t)(m ? m : 1) * sizeof(long long));
+  long long *pairs = malloc(2 * (size_t)(m ? m : 1) * sizeof(long long));
+  pw85_result *res = malloc((size_t)(m ? m : 1) * sizeof(pw85_result));
+  if (!ij || !pairs || !res) return 2;
+  if (st == PW85_ERR_CAPACITY)
+    st = pw85_configuration_pairs(s.conf, shell, (int)threads, m, ij, ij + m, NULL, &m, NULL);
+  for (long long k = 0; k < m; ++k) pairs[2 * k] = ij[k], pairs[2 * k + 1] = ij[m + k];
+  if (st == PW85_OK && m > 0)
+    st = pw85_scene_contact_function(n, s.x, s.q, box, m, pairs, PW85_METHOD_DEFAULT, res, NULL,
+                                     (int)threads);
+  long long bad = 0;
   double mu2_min = INFINITY;
-  for (long long k = 0; k < m; ++k) {
-    if (out[2 * k] < mu2_min) mu2_min = out[2 * k];
-    if (!(out[2 * k] >= 1.0)) ++bad;
-    if (ov[k] != 0) ++nov;
+  for (long long k = 0; st == PW85_OK && k < m; ++k) {
+    if (res[k].mu2 < mu2_min) mu2_min = res[k].mu2;
+    if (!(res[k].mu2 >= 1.0)) ++bad;
   }
-  printf("check: %lld neighbour pairs, min mu^2 = %.6f (pw85_contact_function_batch: %s), "
-         "%lld pairs with mu^2 < 1, %lld overlapping (pw85_overlap_batch: %s)\n",
-         m, mu2_min, pw85_strerror(st), bad, nov, pw85_strerror(st2));
-  int const rc = (st != PW85_OK || st2 != PW85_OK || file_error) ? 2 : (bad || nov) ? 1 : 0;
+  printf("check: %lld neighbour pairs (mu^2 < %.4g), min mu^2 = %.6f "
+         "(pw85_scene_contact_function: %s), %lld pairs with mu^2 < 1, %lld overlapping "
+         "(pw85_configuration_pairs: %s)\n",
+         m, shell * shell, mu2_min, pw85_strerror(st), bad, nov,
+         pw85_strerror(st2 == PW85_ERR_CAPACITY ? PW85_OK : st2));
+  int const rc = (st != PW85_OK || (st2 != PW85_OK && st2 != PW85_ERR_CAPACITY) || file_error)
+                     ? 2
+                     : (bad || nov) ? 1 : 0;
   printf("%s\n", rc == 0 ? "OK: no overlapping pair" : "FAILED");
 
-  free_scene(&s, ncells);
+  free_scene(&s);
   free(fbuf), free(qbuf);
-  free(pairs), free(img), free(centres), free(qall), free(out), free(ov), free(status);
+  free(ij), free(pairs), free(res);
   return rc;
 }

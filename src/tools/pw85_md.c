@@ -9,9 +9,10 @@
  * beyond (eps = 1): twice continuously differentiable at contact, bounded
  * forces. Forces F_j = -dU/dmu^2 d_r12 = -F_i, torques
  * tau_i = -dU/dmu^2 d_theta1, tau_j = -dU/dmu^2 d_theta2 with
- * dU/dmu^2 = -3 eps (1 - mu^2)^2. Cell lists (cells of side >= 2, the largest
- * contact distance), then one pw85_scene_contact_derivatives call per step
- * over the candidate pairs. Integrator: velocity Verlet for the centres; for
+ * dU/dmu^2 = -3 eps (1 - mu^2)^2. Each step, the configuration object
+ * (pw85_configuration_update, no allocation) gives the pairs with mu^2 < 1,
+ * the support of the potential (pw85_configuration_pairs, s = 1), then one
+ * pw85_scene_contact_derivatives call computes them. Integrator: velocity Verlet for the centres; for
  * the orientations the symmetric splitting of the free rigid body into
  * rotations about the body axes x, y, z, y, x (Dullweber, Leimkuhler and
  * McLachlan, J. Chem. Phys. 107, 5840 (1997)), body angular momenta kicked
@@ -37,15 +38,15 @@
 #include "demo_rng.h"
 #include "gsd_write.h"
 
-static const double kAxes[3] = {1.0, 0.6, 0.4}, kEps = 1.0, kCut = 2.0;
+static const double kAxes[3] = {1.0, 0.6, 0.4}, kEps = 1.0;
 
 typedef struct {
   int n;
   double L, inertia[3];
   double *c, *p, *a, *pi, *q, *f, *tau; /* a: 3x3 body -> lab (row major); pi: body ang. mom. */
-  long long *pairs, cap;
+  long long *pairs, *ij, cap; /* ij: the i then the j of the pairs found */
   pw85_derivatives_t *d;
-  int *cell_head, *cell_next;
+  pw85_configuration *conf;
 } md_t;
 
 static void update_q(md_t *s, int i) { /* Q = A diag(axes^2) A^T */
@@ -62,57 +63,38 @@ static void update_q(md_t *s, int i) { /* Q = A diag(axes^2) A^T */
 /* Forces, torques, potential energy; sets *err on an allocation or library
  * error. */
 static double forces(md_t *s, int *err) {
-  int nc = (int)floor(s->L / kCut), n = s->n;
-  double cell = s->L / nc;
-  for (int k = 0; k < nc * nc * nc; k++) s->cell_head[k] = -1;
-  for (int i = 0; i < n; i++) {
-    int idx[3];
-    for (int d = 0; d < 3; d++) {
-      double x = s->c[3 * i + d] - s->L * floor(s->c[3 * i + d] / s->L);
-      idx[d] = (int)(x / cell) % nc;
-    }
-    int k = (idx[0] * nc + idx[1]) * nc + idx[2];
-    s->cell_next[i] = s->cell_head[k];
-    s->cell_head[k] = i;
-  }
+  int const n = s->n;
+  double const box[6] = {s->L, s->L, s->L, 0, 0, 0};
   long long m = 0;
-  for (int i = 0; i < n; i++) {
-    int idx[3];
-    for (int d = 0; d < 3; d++) {
-      double x = s->c[3 * i + d] - s->L * floor(s->c[3 * i + d] / s->L);
-      idx[d] = (int)(x / cell) % nc;
+  int st = s->conf ? pw85_configuration_update(s->conf, n, s->c, s->q, box, NULL)
+                   : pw85_configuration_create(n, s->c, s->q, box, &s->conf, NULL);
+  if (st == PW85_OK)
+    st = pw85_configuration_pairs(s->conf, 1.0, 1, s->cap, s->ij, s->ij + s->cap, NULL, &m, NULL);
+  if (st == PW85_ERR_CAPACITY) {
+    long long const cap = 2 * m;
+    long long *np = realloc(s->pairs, 2 * cap * sizeof *s->pairs);
+    if (np) s->pairs = np;
+    long long *nij = np ? realloc(s->ij, 2 * cap * sizeof *s->ij) : NULL;
+    if (nij) s->ij = nij;
+    pw85_derivatives_t *nd = nij ? realloc(s->d, cap * sizeof *s->d) : NULL;
+    if (!nd) {
+      *err = 1;
+      return 0.0;
     }
-    for (int dx = -1; dx <= 1; dx++)
-      for (int dy = -1; dy <= 1; dy++)
-        for (int dz = -1; dz <= 1; dz++) {
-          int k = (((idx[0] + dx + nc) % nc) * nc + (idx[1] + dy + nc) % nc) * nc + (idx[2] + dz + nc) % nc;
-          for (int j = s->cell_head[k]; j >= 0; j = s->cell_next[j]) {
-            if (j <= i) continue;
-            double r2 = 0.0;
-            for (int d = 0; d < 3; d++) {
-              double x = s->c[3 * j + d] - s->c[3 * i + d];
-              x -= s->L * nearbyint(x / s->L);
-              r2 += x * x;
-            }
-            if (r2 >= kCut * kCut) continue;
-            if (m == s->cap) {
-              long long *np = realloc(s->pairs, 4 * s->cap * sizeof *s->pairs);
-              if (np) s->pairs = np;
-              pw85_derivatives_t *nd = np ? realloc(s->d, 2 * s->cap * sizeof *s->d) : NULL;
-              if (!nd) {
-                *err = 1;
-                return 0.0;
-              }
-              s->d = nd;
-              s->cap *= 2;
-            }
-            s->pairs[2 * m] = i;
-            s->pairs[2 * m + 1] = j;
-            m++;
-          }
-        }
+    s->d = nd;
+    s->cap = cap;
+    st = pw85_configuration_pairs(s->conf, 1.0, 1, s->cap, s->ij, s->ij + s->cap, NULL, &m, NULL);
   }
-  double box[6] = {s->L, s->L, s->L, 0, 0, 0}, u = 0.0;
+  if (st != PW85_OK) {
+    fprintf(stderr, "pw85_md: pw85_configuration: %s\n", pw85_strerror(st));
+    *err = 1;
+    return 0.0;
+  }
+  for (long long k = 0; k < m; k++) {
+    s->pairs[2 * k] = s->ij[k];
+    s->pairs[2 * k + 1] = s->ij[s->cap + k];
+  }
+  double u = 0.0;
   memset(s->f, 0, 3 * n * sizeof(double));
   memset(s->tau, 0, 3 * n * sizeof(double));
   if (m > 0 && pw85_scene_contact_derivatives(n, s->c, s->q, box, m, s->pairs, s->d, NULL, 0) != PW85_OK) {
@@ -212,14 +194,13 @@ static int run(int n, int steps, double dt, uint64_t seed, int every, int verbos
   s.tau = calloc(3 * n, sizeof(double));
   s.cap = 16 * n;
   s.pairs = malloc(2 * s.cap * sizeof *s.pairs);
+  s.ij = malloc(2 * s.cap * sizeof *s.ij);
   s.d = malloc(s.cap * sizeof *s.d);
-  int nc = (int)floor(s.L / kCut);
-  s.cell_head = malloc(nc * nc * nc * sizeof(int));
-  s.cell_next = malloc(n * sizeof(int));
+  s.conf = NULL;
   double *quat = traj ? malloc(4 * (size_t)n * sizeof(double)) : NULL;
   float *fbuf = traj ? malloc(4 * (size_t)n * sizeof(float)) : NULL;
-  int err = !s.c || !s.p || !s.a || !s.pi || !s.q || !s.f || !s.tau || !s.pairs || !s.d ||
-            !s.cell_head || !s.cell_next || (traj && (!quat || !fbuf));
+  int err = !s.c || !s.p || !s.a || !s.pi || !s.q || !s.f || !s.tau || !s.pairs || !s.ij || !s.d ||
+            (traj && (!quat || !fbuf));
   int traj_error = 0;
   rng_t g = {seed};
   int side = (int)ceil(cbrt((double)n));
@@ -270,7 +251,8 @@ static int run(int n, int steps, double dt, uint64_t seed, int every, int verbos
   *drift = fabs(e - e0) / fabs(e0);
   *fluct = sqrt(sum2 / (samples > 0 ? samples : 1)) / fabs(e0);
   free(s.c), free(s.p), free(s.a), free(s.pi), free(s.q), free(s.f), free(s.tau);
-  free(s.pairs), free(s.d), free(s.cell_head), free(s.cell_next), free(quat), free(fbuf);
+  free(s.pairs), free(s.ij), free(s.d), free(quat), free(fbuf);
+  pw85_configuration_destroy(s.conf);
   return err ? 1 : traj_error ? 2 : 0;
 }
 
@@ -282,7 +264,7 @@ static void usage(FILE *out) {
           "fraction 0.2, pair potential (1 - mu^2)^3 for mu^2 < 1, forces and torques\n"
           "from pw85_scene_contact_derivatives; prints the total energy every S/10 steps,\n"
           "its relative drift and fluctuation.\n"
-          "  --n N          number of ellipsoids, >= 43: 3 cells per side (default 256)\n"
+          "  --n N          number of ellipsoids, >= 43 (default 256)\n"
           "  --steps S      time steps, >= 10 (default 10000)\n"
           "  --dt DT        time step, > 0 (default 0.002)\n"
           "  --seed SEED    seed of the initial orientations and velocities (default 1)\n"
@@ -338,9 +320,9 @@ int main(int argc, char **argv) {
     }
     i++;
   }
-  if (floor(box_side((int)n) / kCut) < 3) {
-    fprintf(stderr, "pw85_md: --n %ld: the box (side %g) holds fewer than 3 cells of side %g "
-            "per side; increase --n\n", n, box_side((int)n), kCut);
+  if (n < 43) {
+    fprintf(stderr, "pw85_md: --n %ld: at least 43 ellipsoids (a box of side %g holds fewer "
+            "neighbour shells than the potential's range needs)\n", n, box_side((int)n));
     return 2;
   }
   if (gsd_every == 0) gsd_every = steps / 10;

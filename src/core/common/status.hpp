@@ -13,6 +13,8 @@ enum Status : int {
   kUnknownMethod = -5,
   kInaccurate = -6,
   kRange = -7,
+  kCapacity = -8,
+  kNoMemory = -9,
 };
 
 }  // namespace pw85
