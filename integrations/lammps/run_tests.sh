@@ -10,5 +10,5 @@ builddir=${1:-build}
 paths=$(bash integrations/lammps/build.sh "$builddir")
 lmp=$(sed -n 1p <<<"$paths")
 plugin=$(sed -n 2p <<<"$paths")
-meson configure "$builddir" -Dlammps_lmp="$lmp" -Dlammps_plugin="$plugin" >/dev/null
+meson setup --reconfigure "$builddir" -Dlammps_lmp="$lmp" -Dlammps_plugin="$plugin" | tail -n 3
 meson test -C "$builddir" --suite lammps --print-errorlogs
