@@ -37,17 +37,24 @@ def callgrind(a, tmp, cut):
                        env=dict(os.environ, **lr.MPI_ENV))
     if p.returncode:
         sys.exit(p.stdout[-3000:])
-    neigh = float(re.search(r"^Total # of neighbors = ([0-9.eE+]+)", p.stdout, re.M).group(1))
+    # the neighbour count of the timed runs (the first is that of run 0's full list)
+    neigh = float(re.findall(r"^Total # of neighbors = ([0-9.eE+]+)", p.stdout, re.M)[1])
     ann = subprocess.run(["callgrind_annotate", "--inclusive=yes", f"{tmp}/cg.out"],
-                         stdout=subprocess.PIPE, text=True, check=True).stdout
-    print("style,instructions,steps,neighbour_pairs,instructions_per_pair")
+                         stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
+                         check=True).stdout
+    print("style,instructions,calls,neighbour_pairs,instructions_per_pair")
     per = {}
     for style, fn in FUNCTIONS.items():
         m = re.search(r"^\s*([\d,]+) .*" + re.escape(fn) + r"\(int, int\)", ann, re.M)
         ir = int(m.group(1).replace(",", ""))
-        # the setup of each run calls compute once more than the steps
-        per[style] = ir / ((a.steps + 1) * neigh)
-        print(f"{style},{ir},{a.steps + 1},{neigh:.0f},{per[style]:.0f}")
+        # the setup of each run calls compute once more than the steps, and
+        # pw85/soft once more in run 0
+        calls = a.steps + (2 if style == "pw85/soft" else 1)
+        per[style] = ir / (calls * neigh)
+        print(f"{style},{ir},{calls},{neigh:.0f},{per[style]:.0f}")
+    overlapping = lr.thermo(p.stdout)[0]["c_overlap[1]"][0]
+    print(f"# {a.n} ellipsoids, packing fraction {a.phi}, cutoff {cut}, {neigh:.0f} neighbour"
+          f" pairs (skin 0.3), {overlapping:.0f} of them overlapping")
     print(f"# ratio pw85/soft / gayberne (instructions): {per['pw85/soft'] / per['gayberne']:.2f}")
 
 

@@ -28,6 +28,7 @@ ComputePW85Overlap::ComputePW85Overlap(LAMMPS *lmp, int narg, char **arg)
   size_vector = 2;
   extvector = 0;
   vector = new double[2];
+  comm_forward = 6;  // Q of the ghost atoms
 }
 
 ComputePW85Overlap::~ComputePW85Overlap() { delete[] vector; }
@@ -56,14 +57,22 @@ void ComputePW85Overlap::init() {
 
 void ComputePW85Overlap::init_list(int, NeighList *ptr) { list = ptr; }
 
+int ComputePW85Overlap::pack_forward_comm(int n, int *list, double *buf, int, int *) {
+  return pw85_lammps::pack_quadratic_forms(q, n, list, buf);
+}
+
+void ComputePW85Overlap::unpack_forward_comm(int n, int first, double *buf) {
+  pw85_lammps::unpack_quadratic_forms(q, n, first, buf);
+}
+
 void ComputePW85Overlap::compute_vector() {
   invoked_vector = update->ntimestep;
   neighbor->build_one(list);
   double **x = atom->x;
   const int *mask = atom->mask;
   const tagint *tag = atom->tag;
-  const int nall = atom->nlocal + atom->nghost;
-  std::string problem = pw85_lammps::quadratic_forms(lmp, avec, nall, kStyle, q);
+  std::string problem = pw85_lammps::quadratic_forms(lmp, avec, kStyle, q);
+  comm->forward_comm_compute(this);  // collective: on every rank, problem or not
 
   // Each pair once over all ranks: the full list holds (i, j) and (j, i)
   // (j a ghost image on this or another rank); the lower ID counts it.

@@ -20,6 +20,8 @@ class ComputePW85Overlap : public Compute {
   void init() override;
   void init_list(int, class NeighList *) override;
   void compute_vector() override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
 
  private:
   class AtomVecEllipsoid *avec = nullptr;

@@ -6,6 +6,7 @@
 
 #include "atom.h"
 #include "atom_vec_ellipsoid.h"
+#include "comm.h"
 #include "error.h"
 #include "fmt/format.h"
 #include "force.h"
@@ -20,6 +21,7 @@ static const char kStyle[] = "pair pw85/soft";
 
 PairPW85Soft::PairPW85Soft(LAMMPS *lmp) : Pair(lmp) {
   single_enable = 0;
+  comm_forward = 6;  // Q of the ghost atoms
   restartinfo = 0;
   one_coeff = 0;
 }
@@ -81,29 +83,41 @@ double PairPW85Soft::init_one(int i, int j) {
   return semi_axis_max[i] + semi_axis_max[j];
 }
 
-/* Q of the owned and ghost atoms, then the candidate pairs of the
- * neighbour list: r12 = c_j - c_i (a ghost atom carries its periodic
- * image), centre distance below the cutoff; pairs with coincident centres
- * are tallied here (mu^2 = 0: U = epsilon, no force, no torque). The
- * exact overlap predicate (a few ns per pair) then keeps the pairs with
- * mu^2 < 1, where U > 0, for the derivatives (a few hundred ns); a pair it
- * fails on is kept too. Returns "" or the first problem. */
-std::string PairPW85Soft::overlapping_pairs(int eflag) {
-  double **x = atom->x;
-  const int *type = atom->type;
-  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
-  const double *special_lj = force->special_lj;
-  first.clear(), second.clear(), r12.clear(), q1.clear(), q2.clear(), weight.clear();
-
-  std::string problem = pw85_lammps::quadratic_forms(lmp, avec, nall, kStyle, q);
+/* Q of the owned atoms (pw85_lammps::quadratic_forms), and the check that
+ * no atom outgrew the cutoff; "" or the first problem. */
+std::string PairPW85Soft::owned_quadratic_forms() {
+  std::string problem = pw85_lammps::quadratic_forms(lmp, avec, kStyle, q);
   if (!problem.empty()) return problem;
-  for (int i = 0; i < nall; i++) {
+  for (int i = 0; i < atom->nlocal; i++) {
     const double *r = avec->bonus[atom->ellipsoid[i]].shape;
-    if (std::max(r[0], std::max(r[1], r[2])) > semi_axis_max[type[i]])
+    if (std::max(r[0], std::max(r[1], r[2])) > semi_axis_max[atom->type[i]])
       return fmt::format("{}: atom {} grew beyond the largest semi-axis of its type at the "
                          "start of the run ({}): the cutoff would miss contacts",
-                         kStyle, atom->tag[i], semi_axis_max[type[i]]);
+                         kStyle, atom->tag[i], semi_axis_max[atom->type[i]]);
   }
+  return "";
+}
+
+int PairPW85Soft::pack_forward_comm(int n, int *list, double *buf, int, int *) {
+  return pw85_lammps::pack_quadratic_forms(q, n, list, buf);
+}
+
+void PairPW85Soft::unpack_forward_comm(int n, int first, double *buf) {
+  pw85_lammps::unpack_quadratic_forms(q, n, first, buf);
+}
+
+/* The candidate pairs of the neighbour list: r12 = c_j - c_i (a ghost atom
+ * carries its periodic image), centre distance below the cutoff; pairs
+ * with coincident centres are tallied here (mu^2 = 0: U = epsilon, no
+ * force, no torque). The exact overlap predicate (a few ns per pair) then
+ * keeps the pairs with mu^2 < 1, where U > 0, for the derivatives (a few
+ * hundred ns); a pair it fails on is kept too. */
+void PairPW85Soft::overlapping_pairs(int eflag) {
+  double **x = atom->x;
+  const int *type = atom->type;
+  const int nlocal = atom->nlocal;
+  const double *special_lj = force->special_lj;
+  first.clear(), second.clear(), r12.clear(), q1.clear(), q2.clear(), weight.clear();
 
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
@@ -141,7 +155,6 @@ std::string PairPW85Soft::overlapping_pairs(int eflag) {
   }
   first.resize(kept), second.resize(kept), weight.resize(kept);
   r12.resize(3 * kept), q1.resize(6 * kept), q2.resize(6 * kept);
-  return "";
 }
 
 /* The derivatives of the overlapping pairs; "" or the first pair the
@@ -163,8 +176,14 @@ std::string PairPW85Soft::contact_derivatives() {
 
 void PairPW85Soft::compute(int eflag, int vflag) {
   ev_init(eflag, vflag);
-  std::string problem = overlapping_pairs(eflag);
-  if (problem.empty()) problem = contact_derivatives();
+  std::string problem = owned_quadratic_forms();
+  comm->forward_comm_pair(this);  // collective: on every rank, problem or not
+  if (problem.empty()) {
+    overlapping_pairs(eflag);
+    problem = contact_derivatives();
+  } else {
+    first.clear();
+  }
   pw85_lammps::stop_on_problem(lmp, problem);
 
   // U = eps (1 - mu^2)^3; dU/dmu^2 = -3 eps (1 - mu^2)^2; F_j = -dU/dmu^2

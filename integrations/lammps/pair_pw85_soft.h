@@ -22,10 +22,13 @@ class PairPW85Soft : public Pair {
   void coeff(int, char **) override;
   void init_style() override;
   double init_one(int, int) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
 
  private:
   void allocate();
-  std::string overlapping_pairs(int eflag);
+  std::string owned_quadratic_forms();
+  void overlapping_pairs(int eflag);
   std::string contact_derivatives();
   class AtomVecEllipsoid *avec = nullptr;
   double **epsilon = nullptr;

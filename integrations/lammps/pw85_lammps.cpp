@@ -42,20 +42,32 @@ static std::string atom_problem(LAMMPS *lmp, AtomVecEllipsoid *avec, int i, cons
   return "";
 }
 
-std::string quadratic_forms(LAMMPS *lmp, AtomVecEllipsoid *avec, int n, const char *style,
+std::string quadratic_forms(LAMMPS *lmp, AtomVecEllipsoid *avec, const char *style,
                             std::vector<double> &q) {
-  q.resize(6 * static_cast<size_t>(n));
-  for (int i = 0; i < n; i++) {
+  Atom *atom = lmp->atom;
+  q.resize(6 * static_cast<size_t>(atom->nlocal + atom->nghost));
+  for (int i = 0; i < atom->nlocal; i++) {
     std::string problem = atom_problem(lmp, avec, i, style);
     if (!problem.empty()) return problem;
-    const AtomVecEllipsoid::Bonus &b = avec->bonus[lmp->atom->ellipsoid[i]];
+    const AtomVecEllipsoid::Bonus &b = avec->bonus[atom->ellipsoid[i]];
     const int status = pw85_ellipsoid_quat(b.shape, b.quat, &q[6 * static_cast<size_t>(i)]);
     if (status != PW85_OK)
       return fmt::format("{}: atom {} (semi-axes {} {} {}, quaternion {} {} {} {}): {}", style,
-                         lmp->atom->tag[i], b.shape[0], b.shape[1], b.shape[2], b.quat[0],
+                         atom->tag[i], b.shape[0], b.shape[1], b.shape[2], b.quat[0],
                          b.quat[1], b.quat[2], b.quat[3], pw85_strerror(status));
   }
   return "";
+}
+
+int pack_quadratic_forms(const std::vector<double> &q, int n, const int *list, double *buf) {
+  for (int k = 0; k < n; k++)
+    std::copy(&q[6 * static_cast<size_t>(list[k])], &q[6 * static_cast<size_t>(list[k]) + 6],
+              buf + 6 * k);
+  return 6 * n;
+}
+
+void unpack_quadratic_forms(std::vector<double> &q, int n, int first, const double *buf) {
+  std::copy(buf, buf + 6 * n, &q[6 * static_cast<size_t>(first)]);
 }
 
 void stop_on_problem(LAMMPS *lmp, const std::string &problem) {

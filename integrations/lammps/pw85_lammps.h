@@ -18,16 +18,25 @@ namespace pw85_lammps {
  * holding it); error->all naming `style` when there is none. */
 LAMMPS_NS::AtomVecEllipsoid *ellipsoid_style(LAMMPS_NS::LAMMPS *lmp, const char *style);
 
-/* Resizes q to 6 n and writes the quadratic form Q = R diag(r^2) R^T of
- * atoms 0..n-1 (owned, then ghost) from the semi-axes r (LAMMPS stores the
- * radii, half the diameters of the data file and of `set shape`) and the
- * quaternion (w, x, y, z) of each atom (pw85_ellipsoid_quat). Returns ""
- * or, for the first atom that is not an ellipsoid (a point particle: shape
- * 0), has a semi-axis that is not finite and > 0, a quaternion that is not
- * unit or a position that is not finite, a message naming `style` and the
- * atom's ID (q is then incomplete). */
-std::string quadratic_forms(LAMMPS_NS::LAMMPS *lmp, LAMMPS_NS::AtomVecEllipsoid *avec, int n,
+/* Resizes q to 6 (nlocal + nghost) and writes the quadratic form
+ * Q = R diag(r^2) R^T of each owned atom from its semi-axes r (LAMMPS
+ * stores the radii, half the diameters of the data file and of `set
+ * shape`) and its quaternion (w, x, y, z) (pw85_ellipsoid_quat); the ghost
+ * atoms' entries are left to the caller's forward communication
+ * (pack_quadratic_forms, unpack_quadratic_forms): a ghost is an image of an
+ * owned atom, with its shape and orientation. Returns "" or, for the first
+ * owned atom that is not an ellipsoid (a point particle: shape 0), has a
+ * semi-axis that is not finite and > 0, a quaternion that is not unit or a
+ * position that is not finite, a message naming `style` and the atom's ID
+ * (q is then incomplete). */
+std::string quadratic_forms(LAMMPS_NS::LAMMPS *lmp, LAMMPS_NS::AtomVecEllipsoid *avec,
                             const char *style, std::vector<double> &q);
+
+/* The forward communication of Q (6 doubles per atom) for the
+ * pack_forward_comm and unpack_forward_comm of the pair style and the
+ * compute. */
+int pack_quadratic_forms(const std::vector<double> &q, int n, const int *list, double *buf);
+void unpack_quadratic_forms(std::vector<double> &q, int n, int first, const double *buf);
 
 /* Collective over the ranks of the simulation: when any rank's `problem` is
  * not empty, every rank stops with error->all and the message of the lowest
