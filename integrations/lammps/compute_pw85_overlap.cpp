@@ -61,8 +61,8 @@ int ComputePW85Overlap::pack_forward_comm(int n, int *list, double *buf, int, in
   return pw85_lammps::pack_quadratic_forms(q, n, list, buf);
 }
 
-void ComputePW85Overlap::unpack_forward_comm(int n, int first, double *buf) {
-  pw85_lammps::unpack_quadratic_forms(q, n, first, buf);
+void ComputePW85Overlap::unpack_forward_comm(int n, int first_ghost, double *buf) {
+  pw85_lammps::unpack_quadratic_forms(q, n, first_ghost, buf);
 }
 
 void ComputePW85Overlap::compute_vector() {

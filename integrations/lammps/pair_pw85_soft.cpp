@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 #include "atom.h"
 #include "atom_vec_ellipsoid.h"
@@ -102,8 +101,8 @@ int PairPW85Soft::pack_forward_comm(int n, int *list, double *buf, int, int *) {
   return pw85_lammps::pack_quadratic_forms(q, n, list, buf);
 }
 
-void PairPW85Soft::unpack_forward_comm(int n, int first, double *buf) {
-  pw85_lammps::unpack_quadratic_forms(q, n, first, buf);
+void PairPW85Soft::unpack_forward_comm(int n, int first_ghost, double *buf) {
+  pw85_lammps::unpack_quadratic_forms(q, n, first_ghost, buf);
 }
 
 /* The candidate pairs of the neighbour list: r12 = c_j - c_i (a ghost atom
