@@ -28,8 +28,14 @@ if [ -z "$lammps_src" ]; then
   lammps_src=${lammps_src%/}
 fi
 if ((${#need[@]})) || [ -z "$lammps_src" ]; then
-  if [ -z "$lammps_src" ] && ! grep -rqs '^Types:.*deb-src' /etc/apt/sources.list.d/ \
-      && ! grep -qs '^deb-src .*bookworm' /etc/apt/sources.list; then
+  apt-get update -qq >&2
+  if ((${#need[@]})); then
+    log "installing ${need[*]}"
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need[@]}" >&2
+  fi
+fi
+if [ -z "$lammps_src" ]; then
+  if ! apt-cache showsrc lammps 2>/dev/null | grep -q '^Package: lammps'; then
     log "adding a deb-src entry for bookworm"
     cat > /etc/apt/sources.list.d/pw85-deb-src.sources <<'SRC'
 Types: deb-src
@@ -38,19 +44,13 @@ Suites: bookworm
 Components: main
 Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
 SRC
+    apt-get update -qq >&2
   fi
-  apt-get update -qq >&2
-  if ((${#need[@]})); then
-    log "installing ${need[*]}"
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need[@]}" >&2
-  fi
-  if [ -z "$lammps_src" ]; then
-    log "fetching Debian's source package of LAMMPS into $area/source"
-    mkdir -p "$area/source"
-    (cd "$area/source" && apt-get source -qq lammps >&2)
-    lammps_src=$(ls -d "$area"/source/lammps-*/ | head -n1)
-    lammps_src=${lammps_src%/}
-  fi
+  log "fetching Debian's source package of LAMMPS into $area/source"
+  mkdir -p "$area/source"
+  (cd "$area/source" && apt-get source -qq lammps >&2)
+  lammps_src=$(ls -d "$area"/source/lammps-*/ | head -n1)
+  lammps_src=${lammps_src%/}
 fi
 lammps_src=$(cd "$lammps_src" && pwd)
 
