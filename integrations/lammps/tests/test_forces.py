@@ -3,8 +3,8 @@ configuration against a brute-force sum over all pairs (minimum image) of
 pw85.scene_contact_derivatives (the library's pw85_contact_derivatives),
 with newton_pair on and off, on one and two MPI ranks: relative agreement
 1e-12 (forces and torques relative to the sum of the magnitudes of the pair
-terms of that atom; energy and virial relative to the sum of the magnitudes
-of the pair terms). Per-type epsilon 1, 2 and 0.5 for the mixed pairs."""
+terms of that atom; energy, per-atom energy (compute pe/atom) and virial
+relative to the sum of the magnitudes of the pair terms). Per-type epsilon 1, 2 and 0.5 for the mixed pairs."""
 import sys
 import tempfile
 
@@ -53,11 +53,14 @@ def reference(dump, bounds):
     np.add.at(tscale, pairs[:, 0], np.linalg.norm(ti, axis=1))
     np.add.at(tscale, pairs[:, 1], np.linalg.norm(tj, axis=1))
     u = eps * g ** 3
+    u_atom = np.zeros(n)  # each atom of a pair takes half of U
+    np.add.at(u_atom, pairs[:, 0], u / 2)
+    np.add.at(u_atom, pairs[:, 1], u / 2)
     # virial W_ab = sum over pairs of (c_i - c_j)_a F_i,b; pressure W / V
     comps = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)]
     w = np.array([np.sum(-r12[:, a] * fi[:, b]) for a, b in comps]) / np.prod(L)
     wscale = np.array([np.sum(np.abs(r12[:, a] * fi[:, b])) for a, b in comps]) / np.prod(L)
-    return dict(force=force, torque=torque, fscale=fscale, tscale=tscale, u=u.sum(),
+    return dict(force=force, torque=torque, fscale=fscale, tscale=tscale, u=u.sum(), u_atom=u_atom,
                 uscale=np.abs(u).sum(), virial=w, wscale=wscale, pairs=len(pairs),
                 deep=int(np.sum(der["mu2"] < 0.25)))
 
@@ -67,7 +70,8 @@ def compare(name, dump, thermo, ref):
     t = np.stack([dump["tqx"], dump["tqy"], dump["tqz"]], axis=1)
     ef = np.max(np.linalg.norm(f - ref["force"], axis=1) / np.maximum(ref["fscale"], 1e-300))
     et = np.max(np.linalg.norm(t - ref["torque"], axis=1) / np.maximum(ref["tscale"], 1e-300))
-    eu = abs(thermo["PotEng"][-1] - ref["u"]) / ref["uscale"]
+    eu = max(abs(thermo["PotEng"][-1] - ref["u"]) / ref["uscale"],
+             np.max(np.abs(dump["c_pe"] - ref["u_atom"])) / ref["uscale"])
     w = np.array([thermo[f"c_virial[{k}]"][-1] for k in range(1, 7)])
     ew = np.max(np.abs(w - ref["virial"]) / ref["wscale"])
     return lr.report(name, max(ef, et, eu, ew) <= TOL,
