@@ -14,7 +14,6 @@ then the summary as comment lines.
     python3 integrations/lammps/bench_pair.py LMP PLUGIN [--n N] [--phi PHI]
         [--steps S] [--reps R] [--callgrind]"""
 import argparse
-import glob
 import os
 import re
 import statistics
