@@ -1,7 +1,7 @@
 // PW85_METHOD_DEFAULT across pairs on x86-64-v4 (docs/batch.md,
 // "Throughput"): the rational step of contact_default_v4 (default.cpp,
 // rational_v4) for eight pairs at once, pair l in lane l of each vector:
-// the screen of the entry (screen.hpp, screen_contact_pair), the seven
+// the screen of the entry (screen.hpp, screen_contact_lanes), the seven
 // coefficients (M12)-(M13) in double-double (f_rational_dd.hpp: rdd::terms
 // per adjugate entry, then the sums over the entries; det_precise for d0,
 // d3 in lanes where their bound fails), the grid start (M24)
@@ -47,35 +47,6 @@ PW85_V4_INLINE M8 from_bits(__mmask8 k) noexcept {
 
 PW85_V4_INLINE __mmask8 to_bits(M8 m) noexcept {
   return _mm512_movepi64_mask(reinterpret_cast<__m512i>(m));
-}
-
-// screen_contact_pair (screen.hpp) for the eight pairs, the same decision
-// in each lane: max |r_i| and max |Q_ij| of each matrix strictly inside
-// (kSafeLo, kSafeHi), written as "every |x| < kSafeHi and some |x| >
-// kSafeLo" (the same for finite values; a NaN or an infinite value fails
-// both forms), and the positive-definiteness certificate of spd.hpp
-// (certain_spd), with its operations. Against screen_contact_pair lane by
-// lane: 7 % less time per pair in classes 0-2, 2.5 % in class 3
-// (pw85_contact_function_pairs on bench_batch's pairs, runs alternating the
-// two builds).
-PW85_V4_INLINE M8 screen_lanes(Vec3L<W> const &r, SymL<W> const &q1,
-                               SymL<W> const &q2) noexcept {
-  M8 in = (vabs(r[0]) < kSafeHi) & (vabs(r[1]) < kSafeHi) & (vabs(r[2]) < kSafeHi) &
-          ((vabs(r[0]) > kSafeLo) | (vabs(r[1]) > kSafeLo) | (vabs(r[2]) > kSafeLo));
-  SymL<W> const *const qs[2] = {&q1, &q2};
-  for (int m = 0; m < 2; ++m) {
-    SymL<W> const &x = *qs[m];
-    M8 below{}, above{};
-    below = ~below;
-    for (int i = 0; i < kSym; ++i) {
-      below &= vabs(x[i]) < kSafeHi;
-      above |= vabs(x[i]) > kSafeLo;
-    }
-    V8 d0, d1, d2;
-    spd_shifted_pivots(x[0], x[1], x[2], x[3], x[4], x[5], d0, d1, d2);
-    in &= below & above & (d0 > 0.0) & (d1 > 0.0) & (d2 > 0.0) & (d2 <= kMaxDouble);
-  }
-  return in;
 }
 
 // The coefficients of rational_coefficients_dd (f_rational_dd.hpp), one
@@ -252,7 +223,7 @@ PW85_TARGET_V4 void rational_lanes_v4(double const *const rp[W], double const *c
       q2[i][l] = q2p[l][i];
     }
   }
-  M8 const screen = screen_lanes(r, q1, q2);
+  M8 const screen = screen_contact_lanes<V8>(r, q1, q2, kSafeLo, kSafeHi);
   M8 accepted{};
   V8 mu2{}, lam{}, err{};
   M8 iters{};
