@@ -121,6 +121,13 @@ PW85_ALWAYS_INLINE bool any(K m) noexcept {
   return a != 0;
 }
 
+// The mask with every lane set, and the negation of a mask (0 or -1 per
+// lane; for one pair, K = bool: true and !m).
+template <class K>
+PW85_ALWAYS_INLINE K all_set() noexcept { return K{} == K{}; }
+template <class K>
+PW85_ALWAYS_INLINE K mask_not(K m) noexcept { return m == K{}; }
+
 // out[i][l] = p[l][i] for i < N, l < W: N doubles at each of W pointers,
 // element i of pair l in lane l of out[i]. For W = 8, elements 4k ... 4k + 3
 // are loaded as one 256-bit vector per pair and those pairs of elements
@@ -178,6 +185,7 @@ PW85_ALWAYS_INLINE void gather(double const *const p[W], VecD<W> out[N]) noexcep
 PW85_ALWAYS_INLINE double vabs(double x) noexcept { return std::fabs(x); }
 PW85_ALWAYS_INLINE double vsqrt(double x) noexcept { return std::sqrt(x); }
 PW85_ALWAYS_INLINE double select(bool m, double a, double b) noexcept { return m ? a : b; }
+PW85_ALWAYS_INLINE double copysign(double x, double y) noexcept { return std::copysign(x, y); }
 PW85_ALWAYS_INLINE bool finite(double x) noexcept { return std::isfinite(x); }
 PW85_ALWAYS_INLINE bool any(bool m) noexcept { return m; }
 

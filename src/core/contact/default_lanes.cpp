@@ -47,51 +47,9 @@ constexpr int kLaneMaxIter = 8;
 typedef SymL<W> S;
 typedef Vec3L<W> T;
 
-// DEFAULT's start (M22) (start.hpp: start_quartics<true>,
-// log_newton_iterate<kStartMin, kStartMax>, newton_start).
+// DEFAULT's start (M22) (start.hpp).
 PW85_ALWAYS_INLINE V default_start(T const &r, S const &q1, S const &q2) noexcept {
-  StartQuarticsOf<VecD<W>> sq;
-  start_quartics<true>(r, q1, q2, sq);
-  V const a10 = sq.a1[0], a11 = sq.a1[1], a12 = sq.a1[2], a13 = sq.a1[3], a14 = sq.a1[4];
-  V const a20 = sq.a2[0], a21 = sq.a2[1], a22 = sq.a2[2], a23 = sq.a2[3], a24 = sq.a2[4];
-  V const x0 = sq.x0;
-  // log_newton_iterate<kStartMin, kStartMax>
-  V x = x0;
-  V const b12 = 2.0 * a12, b13 = 3.0 * a13, b14 = 4.0 * a14;
-  V const b22 = 2.0 * a22, b23 = 3.0 * a23, b24 = 4.0 * a24;
-  V out{};
-  M done{};
-  for (int k = 1;; ++k) {
-    V const x2 = x * x;
-    V const a1 = (a10 + a11 * x) + x2 * ((a12 + a13 * x) + x2 * a14);
-    V const a2 = (a20 + a21 * x) + x2 * ((a22 + a23 * x) + x2 * a24);
-    V const d1 = (a11 + b12 * x) + x2 * (b13 + b14 * x);
-    V const d2 = (a21 + b22 * x) + x2 * (b23 + b24 * x);
-    V const b = x2 * a2;
-    V n = a1 - b, dd = a1 + b;
-    V const w = 2.0 * (a1 * a2);
-    V const g = w - x * (d1 * a2 - d2 * a1);
-    M const gp = g > 0.0;
-    n = select(gp, n * w, n);
-    dd = select(gp, dd * g, dd);
-    V const lim = kClamp * dd;
-    V const nc = select(vabs(n) > lim, copysign(lim, n), n);
-    V const num = x * (2.0 * dd + nc), den = 2.0 * dd - nc;
-    static_assert(kStartMin == 1, "the test k >= kStartMin holds from the first step");
-    M stop = vabs(n) <= kStartTol * dd;
-    if (k >= kStartMax) stop = ~M{};
-    stop &= ~done;
-    if (any(stop)) {
-      V const l = num / (den + num);
-      out = select(stop, l, out);
-      done |= stop;
-      if (k >= kStartMax || !any(~done)) break;
-    }
-    x = num / den;
-  }
-  M const in = (out > 0.0) & (out < 1.0);
-  if (any(~in)) out = select(in, out, newton_start(r, q1, q2));
-  return out;
+  return log_newton_start<kStartMin, kStartMax>(r, q1, q2, kStartTol);
 }
 
 // f_adj.hpp: f_eval_adj and adj_error for these lanes.

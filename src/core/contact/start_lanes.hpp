@@ -57,15 +57,5 @@ PW85_ALWAYS_INLINE SymL<W> interpolate(SymL<W> const &q1, SymL<W> const &q2,
   return q;
 }
 
-// start.hpp: newton_start.
-template <int W>
-PW85_ALWAYS_INLINE VecD<W> newton_start(Vec3L<W> const &r, SymL<W> const &q1,
-                                        SymL<W> const &q2) noexcept {
-  VecD<W> const h1 = vsqrt(dot(r, multiply(q1, r)));
-  VecD<W> const h2 = vsqrt(dot(r, multiply(q2, r)));
-  VecD<W> const l0 = h1 / (h1 + h2);
-  return select((l0 > 0.0) & (l0 < 1.0), l0, VecD<W>{} + 0.5);
-}
-
 }  // namespace lanes
 }  // namespace pw85
