@@ -112,7 +112,7 @@ Status contact_default_general_v4(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
 // DEFAULT for kDefaultLanes pairs at once, pair l = (r[l], q1[l], q2[l])
 // (docs/batch.md, "Throughput"): on x86-64-v4 the rational step in eight
 // lanes (rational_lanes.cpp), elsewhere the common path of contact_default
-// in two times four lanes (default_lanes.cpp). status[l] != kLaneUndecided:
+// in two times four lanes (default.cpp, first_step_lanes). status[l] != kLaneUndecided:
 // res[l] and status[l] are what pw85_contact_function_method(..., DEFAULT,
 // ...) gives, bit for bit; kLaneUndecided: res[l] is meaningless and the
 // caller makes the one-pair call. Any values are accepted (read unchecked:

@@ -32,7 +32,11 @@
 #include <cmath>
 #include <limits>
 
+#include <type_traits>
+
 #include "common/fp.hpp"
+#include "common/lanes.hpp"
+#include "common/screen.hpp"
 #include "contact/contact.hpp"
 #include "contact/default_params.hpp"
 #include "eval/f_adj.hpp"
@@ -41,6 +45,7 @@
 #include "common/isa.hpp"
 #include "contact/newton.hpp"
 #include "contact/rational_step.hpp"
+#include "contact/start_lanes.hpp"
 #include "contact/start_scan.hpp"
 
 namespace pw85 {
@@ -58,8 +63,9 @@ constexpr int kDDMaxNewton = 6;
 constexpr double kDDTrustRel = 0x1p-6;
 constexpr int kDDMaxBracket = 160;
 
-// DEFAULT's start, eq. (M22) (start.hpp).
-PW85_ALWAYS_INLINE double default_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
+// DEFAULT's start, eq. (M22) (start.hpp), for one pair or one pair per lane.
+template <class Vec, class Sym>
+PW85_ALWAYS_INLINE auto default_start(Vec const &r, Sym const &q1, Sym const &q2) noexcept {
   return log_newton_start<kStartMin, kStartMax>(r, q1, q2, kStartTol);
 }
 
@@ -175,6 +181,131 @@ __attribute__((noinline)) Status dd_bracket(Vec3 const &r, Sym3 const &q1_in,
   return res.mu2_error <= kDefaultRelAccuracy * res.mu2 ? kOk : kInaccurate;
 }
 
+// Iterations counted for one pair (an int, active true) or per lane (the
+// mask, -1 in the active lanes, subtracted).
+PW85_ALWAYS_INLINE void count_active(int &n, bool active) noexcept { n += active; }
+template <class Mask>
+PW85_ALWAYS_INLINE void count_active(Mask &n, Mask active) noexcept { n -= active; }
+
+// f by the stationary form (f_dd.hpp, eq. (M11)) at lambda: the one-pair
+// call, or that call lane by lane in the lanes of want (0 in the others).
+PW85_ALWAYS_INLINE double stationary_form(double lambda, Vec3 const &r, Sym3 const &q1,
+                                          Sym3 const &q2, Vec3 const &s, bool) noexcept {
+  return f_stationary(lambda, r, q1, q2, s);
+}
+template <int W>
+PW85_ALWAYS_INLINE lanes::VecD<W> stationary_form(lanes::VecD<W> lambda,
+                                                  lanes::Vec3L<W> const &r,
+                                                  lanes::SymL<W> const &q1,
+                                                  lanes::SymL<W> const &q2,
+                                                  lanes::Vec3L<W> const &s,
+                                                  lanes::MaskD<W> want) noexcept {
+  lanes::VecD<W> out{};
+  for (int l = 0; l < W; ++l) {
+    if (want[l] == 0) continue;
+    out[l] = f_stationary(lambda[l], Vec3{{r[0][l], r[1][l], r[2][l]}},
+                          Sym3{{q1[0][l], q1[1][l], q1[2][l], q1[3][l], q1[4][l], q1[5][l]}},
+                          Sym3{{q2[0][l], q2[1][l], q2[2][l], q2[3][l], q2[4][l], q2[5][l]}},
+                          Vec3{{s[0][l], s[1][l], s[2][l]}});
+  }
+  return out;
+}
+
+// What step 1 of DEFAULT leaves: where accepted, mu2, its lambda and error;
+// elsewhere the lambda step 2 starts from (the last lambda evaluated, or the
+// next iterate where the model was accurate but its error too large).
+template <class Lane>
+struct FirstStep {
+  lanes::MaskOf<Lane> accepted;
+  Lane mu2, lambda, err;
+  Lane start;
+};
+
+// Step 1 of DEFAULT (docs/methods.md): from the start (M22), the
+// safeguarded Halley iteration (M8) with adjugate evaluations (f_adj.hpp,
+// eq. (M16)) until the quartic model (M18) is accurate; accepted where the
+// first-order error of the double f (eqs. (M10), (M17)), or else the error
+// of the stationary form (M11), is below kFastRel mu2. Written once for one
+// pair (Lane = double, Vec3, Sym3: default_body) and for one pair per lane
+// (lanes::VecD, Vec3L, SymL: default_lanes), with the same operations in the
+// same order in each lane (this file is compiled without contraction,
+// src/meson.build), so a lane computes the one-pair call's bits. active:
+// the pairs (lanes) to iterate; at most kMaxIter evaluations.
+template <int kMaxIter, class Lane, class Vec, class Sym, class Count>
+PW85_ALWAYS_INLINE FirstStep<Lane> first_step(Vec const &r, Sym const &q1, Sym const &q2,
+                                              Sym const &d, lanes::MaskOf<Lane> active,
+                                              Count &iterations) noexcept {
+  using lanes::mask_not;
+  using lanes::select;
+  using lanes::vabs;
+  typedef lanes::MaskOf<Lane> Mask;
+  Lane const lambda0 = default_start(r, q1, q2);
+  FirstStep<Lane> out{};
+  out.start = lambda0;
+  Lane lo{}, hi = Lane{} + 1.0, lambda = lambda0;
+  AdjEvalOf<Lane, Sym, Vec> e;
+  for (int it = 0; it < kMaxIter && lanes::any(active); ++it) {
+    count_active(iterations, active);
+    active &= f_eval_adj(lambda, r, q1, q2, d, e);
+    out.start = select(active, lambda, out.start);
+    HalleyDecision<Lane> const hd = halley_decide(lambda, e, lo, hi);
+    Mask const near = active & hd.near;
+    if (lanes::any(near)) {
+      // Error terms (eqs. (M10), (M17)): err_s bounds the error of s.
+      Vec const err_s = adj_error(e, r, q1, q2);
+      Lane const p = lambda * (1.0 - lambda), p1 = vabs(1.0 - 2.0 * lambda);
+      Vec const as{{vabs(e.s[0]), vabs(e.s[1]), vabs(e.s[2])}};
+      Sym da;
+      for (int i = 0; i < kSym; ++i) da[i] = vabs(d[i]);
+      Vec const ar{{vabs(r[0]), vabs(r[1]), vabs(r[2])}};
+      Lane const edf = p1 * dot(ar, err_s) + 2.0 * p * dot(as, multiply(da, err_s)) +
+                       4.0 * kU * (p1 * e.phi + p * vabs(e.dphi));
+      // Quartic Taylor model at lambda (eq. (M18)).
+      Lane const h = select(hd.tiny, Lane{}, hd.step);
+      Lane const err_l = model_error(edf, h, hd.a, e.d4f);
+      Mask done = near & ((err_l <= kExtrapBudget * e.f) | (vabs(e.df) <= 2.0 * edf) | hd.tiny);
+      if constexpr (std::is_same<Lane, double>::value) opaque(done);
+      if (lanes::any(done)) {
+        Lane const corr = model_increment(h, e);
+        // First-order error of the double f: |r|^T err_s + rounding of r^T s.
+        Lane const err1 =
+            p * (dot(ar, err_s) + 3.0 * kU * dot(ar, as)) + 4.0 * kU * e.f + err_l;
+        Mask accept = done & (err1 <= kFastRel * e.f);
+        Lane m = e.f + corr, em = err1;
+        Mask const slow = done & mask_not(accept);
+        if (lanes::any(slow)) {
+          // Second-order error of the stationary form: p err_s^T |Q| err_s;
+          // tested before the form is computed (with f for mu2, 1e-3
+          // margin), so that pairs bound to fail go straight to step 2.
+          Sym qa;
+          for (int i = 0; i < kSym; ++i) qa[i] = vabs(e.q[i]);
+          Lane const err2 = p * dot(err_s, multiply(qa, err_s)) + err_l;
+          Mask const try_stat =
+              slow & mask_not(Mask(err2 + e.f * kStatRel > 0.999 * kFastRel * e.f));
+          if (lanes::any(try_stat)) {
+            Lane const ms = stationary_form(lambda, r, q1, q2, e.s, try_stat) + corr;
+            Lane const es = ms * kStatRel + err2;
+            Mask const stat_ok = try_stat & (es <= kFastRel * ms);
+            m = select(stat_ok, ms, m);
+            em = select(stat_ok, es, em);
+            accept |= stat_ok;
+          }
+        }
+        out.mu2 = select(accept, m, out.mu2);
+        out.lambda = select(accept, lambda + h, out.lambda);
+        out.err = select(accept, em, out.err);
+        out.accepted |= accept;
+        Mask const to_next = done & mask_not(accept) & mask_not(hd.tiny);
+        out.start = select(to_next, hd.next, out.start);
+        active &= mask_not(done);  // accepted, or step 2 needed
+      }
+    }
+    active &= mask_not(hd.tiny);  // step 2 needed
+    lambda = select(hd.inside, hd.next, 0.5 * (lo + hi));
+  }
+  return out;
+}
+
 // The whole method, inlined into one function per instruction-set level
 // (contact_default below). Its hot part, the start and the adjugate
 // iteration of step 1, is inline (start.hpp, f_adj.hpp) and so compiled for
@@ -183,72 +314,16 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
                                        MethodResult &res) noexcept {
   res.iterations = 0;
   Sym3 const d = difference(q2, q1);
-  // Step 1: Halley iteration with adjugate evaluations (f_adj.hpp).
-  double const lambda0 = default_start(r, q1, q2);
-  double start = lambda0;
-  {
-    double lo = 0.0, hi = 1.0, lambda = lambda0;
-    AdjEval e;
-    for (int it = 0; it < kAdjMaxIter; ++it) {
-      ++res.iterations;
-      if (!f_eval_adj(lambda, r, q1, q2, d, e)) break;
-      start = lambda;
-      HalleyDecision<double> const hd = halley_decide(lambda, e, lo, hi);
-      double const a = hd.a, step = hd.step, next = hd.next;
-      bool const inside = hd.inside, tiny = hd.tiny;
-      if (hd.near) {
-        // Error terms (eqs. (M10), (M17)): E bounds the error of s.
-        Vec3 const E = adj_error(e, r, q1, q2);
-        double const p = lambda * (1.0 - lambda), p1 = std::fabs(1.0 - 2.0 * lambda);
-        Vec3 const as{{std::fabs(e.s[0]), std::fabs(e.s[1]), std::fabs(e.s[2])}};
-        Sym3 da, qa;
-        for (int i = 0; i < kSym; ++i) {
-          da[i] = std::fabs(d[i]);
-          qa[i] = std::fabs(e.q[i]);
-        }
-        Vec3 const ar{{std::fabs(r[0]), std::fabs(r[1]), std::fabs(r[2])}};
-        double const edf = p1 * dot(ar, E) + 2.0 * p * dot(as, multiply(da, E)) +
-                           4.0 * kU * (p1 * e.phi + p * std::fabs(e.dphi));
-        // Quartic Taylor model at lambda (eq. (M18)).
-        double const h = tiny ? 0.0 : step;
-        double const err_l = model_error(edf, h, a, e.d4f);
-        bool done = (err_l <= kExtrapBudget * e.f) | (std::fabs(e.df) <= 2.0 * edf) | tiny;
-        opaque(done);
-        if (done) {
-          double const corr = model_increment(h, e);
-          // First-order error of the double f: |r|^T E + rounding of r^T s.
-          double const err1 =
-              p * (dot(ar, E) + 3.0 * kU * dot(ar, as)) + 4.0 * kU * e.f + err_l;
-          if (err1 <= kFastRel * e.f) {
-            res.mu2 = e.f + corr;
-            res.lambda = lambda + h;
-            res.mu2_error = err1;
-            return kOk;
-          }
-          // Second-order error of the stationary form: p E^T |Q| E; tested
-          // before the form is computed (with f for mu2, 1e-3 margin), so
-          // that pairs bound to fail go straight to step 2.
-          double const err2 = p * dot(E, multiply(qa, E)) + err_l;
-          if (err2 + e.f * kStatRel > 0.999 * kFastRel * e.f) {
-            if (!tiny) start = next;
-            break;
-          }
-          double const mu2 = f_stationary(lambda, r, q1, q2, e.s) + corr;
-          double const err = mu2 * kStatRel + err2;
-          if (err <= kFastRel * mu2) {
-            res.mu2 = mu2;
-            res.lambda = lambda + h;
-            res.mu2_error = err;
-            return kOk;
-          }
-          if (!tiny) start = next;
-          break;
-        }
-      }
-      if (tiny) break;
-      lambda = inside ? next : 0.5 * (lo + hi);
-    }
+  // Step 1: Halley iteration with adjugate evaluations (first_step).
+  FirstStep<double> const first = first_step<kAdjMaxIter, double>(r, q1, q2, d, true,
+                                                                   res.iterations);
+  if (first.accepted) {
+    res.mu2 = first.mu2;
+    res.lambda = first.lambda;
+    res.mu2_error = first.err;
+    return kOk;
   }
+  double const start = first.start;
   // Step 2: LDL^T evaluations (newton.cpp), from the best lambda so far.
   NewtonState st;
   FEval &e = st.e;
@@ -351,6 +426,64 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
   res.mu2_error = std::isfinite(e.f) ? newton_error(st, r, q1, q2) : std::nan("");
   return kNoConvergence;
 }
+
+// Step 1 of DEFAULT for kLanes pairs at once, pair l in lane l of each
+// vector (docs/batch.md, "Throughput"): the screen of the entry
+// (screen.hpp, screen_contact_lanes), then first_step with at most
+// kLaneMaxIter evaluations. accepted[l]: the pair's result is that of the
+// one-pair call, bit for bit (first_step accepted it and it keeps the
+// promise that methods.cpp checks after every method); otherwise (screen
+// failed, a failed evaluation, step 2 needed, more steps needed) the pair is
+// left to the caller's one-pair call.
+constexpr int kLaneMaxIter = 8;  // the pairs that need more: one-pair call
+
+PW85_ALWAYS_INLINE void first_step_lanes(double const *const rp[lanes::kLanes],
+                                         double const *const q1p[lanes::kLanes],
+                                         double const *const q2p[lanes::kLanes],
+                                         MethodResult res[lanes::kLanes],
+                                         bool accepted[lanes::kLanes]) noexcept {
+  constexpr int kWidth = lanes::kLanes;
+  typedef lanes::VecD<kWidth> Lane;
+  lanes::Vec3L<kWidth> r;
+  lanes::SymL<kWidth> q1, q2;
+  for (int l = 0; l < kWidth; ++l) {
+    for (int i = 0; i < kDim; ++i) r[i][l] = rp[l][i];
+    for (int i = 0; i < kSym; ++i) {
+      q1[i][l] = q1p[l][i];
+      q2[i][l] = q2p[l][i];
+    }
+  }
+  lanes::MaskD<kWidth> const active = screen_contact_lanes<Lane>(r, q1, q2, kSafeLo, kSafeHi);
+  lanes::MaskD<kWidth> iterations{};
+  FirstStep<Lane> first{};
+  if (lanes::any(active)) {
+    lanes::SymL<kWidth> d;
+    for (int i = 0; i < kSym; ++i) d[i] = q2[i] - q1[i];
+    first = first_step<kLaneMaxIter, Lane>(r, q1, q2, d, active, iterations);
+  }
+  // The promise checked after every method (methods.cpp, checked).
+  lanes::MaskD<kWidth> const kept = first.accepted & (first.mu2 >= 0.0) &
+                                    (first.lambda >= 0.0) & (first.lambda <= 1.0) &
+                                    (first.err == first.err);
+  for (int l = 0; l < kWidth; ++l) {
+    accepted[l] = kept[l] != 0;
+    res[l].mu2 = first.mu2[l];
+    res[l].lambda = first.lambda[l];
+    res[l].mu2_error = first.err[l];
+    res[l].iterations = static_cast<int>(iterations[l]);
+    res[l].method = kMethodDefault;
+  }
+}
+
+#if PW85_ISA_LEVELS
+PW85_TARGET_V3 void first_step_lanes_v3(double const *const rp[lanes::kLanes],
+                                        double const *const q1p[lanes::kLanes],
+                                        double const *const q2p[lanes::kLanes],
+                                        MethodResult res[lanes::kLanes],
+                                        bool accepted[lanes::kLanes]) noexcept {
+  first_step_lanes(rp, q1p, q2p, res, accepted);
+}
+#endif
 
 #if PW85_ISA_LEVELS
 // The rational step (docs/methods.md, "PW85_METHOD_DEFAULT"): from the
@@ -460,6 +593,29 @@ Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   if (isa::has_v4()) return contact_default_v4(r, q1, q2, res);
 #endif
   return default_body(r, q1, q2, res);
+}
+
+// DEFAULT across pairs (contact.hpp). On x86-64-v4, where the one-pair
+// DEFAULT runs the rational step first, the lanes of rational_lanes.cpp;
+// elsewhere first_step_lanes on kDefaultLanes / kLanes vectors.
+void default_lanes(double const *const r[kDefaultLanes], double const *const q1[kDefaultLanes],
+                   double const *const q2[kDefaultLanes], MethodResult res[kDefaultLanes],
+                   int status[kDefaultLanes]) noexcept {
+  static_assert(kDefaultLanes % lanes::kLanes == 0, "kDefaultLanes / kLanes vectors per block");
+#if PW85_ISA_LEVELS
+  if (isa::has_v4()) return rational_lanes_v4(r, q1, q2, res, status);
+#endif
+  bool accepted[kDefaultLanes];
+  for (int b = 0; b < kDefaultLanes; b += lanes::kLanes) {
+#if PW85_ISA_LEVELS
+    if (isa::has_v3()) {
+      first_step_lanes_v3(r + b, q1 + b, q2 + b, res + b, accepted + b);
+      continue;
+    }
+#endif
+    first_step_lanes(r + b, q1 + b, q2 + b, res + b, accepted + b);
+  }
+  for (int l = 0; l < kDefaultLanes; ++l) status[l] = accepted[l] ? kOk : kLaneUndecided;
 }
 
 }  // namespace pw85

@@ -1,7 +1,7 @@
 // The decisions of DEFAULT's Halley iterations (docs/methods.md,
 // "PW85_METHOD_DEFAULT"), written once for one pair (T = double: step 1 of
 // default_body and the rational step, default.cpp) and for one pair per
-// vector lane (T a vector type: contact/default_lanes.cpp,
+// vector lane (T a vector type: first_step_lanes in contact/default.cpp,
 // contact/rational_lanes.cpp). Every lane performs the scalar operations in
 // the same order (those files are compiled without contraction,
 // src/meson.build), so a lane takes the decisions of the one-pair code and
