@@ -124,9 +124,12 @@ PW85_ALWAYS_INLINE bool any(K m) noexcept {
 // The mask with every lane set, and the negation of a mask (0 or -1 per
 // lane; for one pair, K = bool: true and !m).
 template <class K>
-PW85_ALWAYS_INLINE K all_set() noexcept { return K{} == K{}; }
+PW85_ALWAYS_INLINE K all_set() noexcept { return ~K{}; }
+template <>
+PW85_ALWAYS_INLINE bool all_set<bool>() noexcept { return true; }
 template <class K>
-PW85_ALWAYS_INLINE K mask_not(K m) noexcept { return m == K{}; }
+PW85_ALWAYS_INLINE K mask_not(K m) noexcept { return ~m; }
+PW85_ALWAYS_INLINE bool mask_not(bool m) noexcept { return !m; }
 
 // out[i][l] = p[l][i] for i < N, l < W: N doubles at each of W pointers,
 // element i of pair l in lane l of out[i]. For W = 8, elements 4k ... 4k + 3
@@ -188,6 +191,10 @@ PW85_ALWAYS_INLINE double select(bool m, double a, double b) noexcept { return m
 PW85_ALWAYS_INLINE double copysign(double x, double y) noexcept { return std::copysign(x, y); }
 PW85_ALWAYS_INLINE bool finite(double x) noexcept { return std::isfinite(x); }
 PW85_ALWAYS_INLINE bool any(bool m) noexcept { return m; }
+PW85_ALWAYS_INLINE bool lt(double x, double y) noexcept { return x < y; }
+PW85_ALWAYS_INLINE bool le(double x, double y) noexcept { return x <= y; }
+PW85_ALWAYS_INLINE bool gt(double x, double y) noexcept { return x > y; }
+PW85_ALWAYS_INLINE bool ge(double x, double y) noexcept { return x >= y; }
 
 }  // namespace lanes
 }  // namespace pw85

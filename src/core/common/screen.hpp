@@ -85,27 +85,33 @@ inline bool screen_overlap_pair(double const *r, double const *q1, double const 
 // fails both forms; the maximum written as nested conditionals was compiled
 // to a branch on r0 > r1, taken at random).
 template <class V, class Vc>
-PW85_ALWAYS_INLINE lanes::MaskOf<V> offset_in_range(Vc const &r, double lo, double hi) noexcept {
+PW85_ALWAYS_INLINE auto offset_in_range(Vc const &r, double lo, double hi) noexcept {
+  using lanes::gt;
+  using lanes::lt;
   using lanes::vabs;
   V const r0 = vabs(r[0]), r1 = vabs(r[1]), r2 = vabs(r[2]);
-  return (r0 < hi) & (r1 < hi) & (r2 < hi) & ((r0 > lo) | (r1 > lo) | (r2 > lo));
+  return lt(r0, hi) & lt(r1, hi) & lt(r2, hi) & (gt(r0, lo) | gt(r1, lo) | gt(r2, lo));
 }
 
 // True where the matrix x0 ... x5 (one per lane) has max |x_i| strictly
 // inside (lo, hi) and passes the positive-definiteness certificate of
 // spd.hpp (certain_spd, its operations: the decision is certain_spd's). A
 // NaN entry may be skipped by the maximum (vmax); it reaches a pivot, whose
-// test fails.
+// test fails. The comparisons are lanes.hpp's (lt, gt, ...: unsigned masks,
+// which GCC does not compile lane by lane in an x86-64-v4 caller).
 template <class V>
-PW85_ALWAYS_INLINE lanes::MaskOf<V> matrix_in_range_spd(V x0, V x1, V x2, V x3, V x4, V x5,
-                                                         double lo, double hi) noexcept {
+PW85_ALWAYS_INLINE auto matrix_in_range_spd(V x0, V x1, V x2, V x3, V x4, V x5, double lo,
+                                            double hi) noexcept {
+  using lanes::gt;
+  using lanes::le;
+  using lanes::lt;
   using lanes::vabs;
   using lanes::vmax;
   V const m = vmax(vmax(vmax(vabs(x0), vabs(x1)), vabs(x2)),
                    vmax(vmax(vabs(x3), vabs(x4)), vabs(x5)));
   V d0, d1, d2;
   spd_shifted_pivots(x0, x1, x2, x3, x4, x5, d0, d1, d2);
-  return (m > lo) & (m < hi) & (d0 > 0.0) & (d1 > 0.0) & (d2 > 0.0) & (d2 <= kMaxDouble);
+  return gt(m, lo) & lt(m, hi) & gt(d0, 0.0) & gt(d1, 0.0) & gt(d2, 0.0) & le(d2, kMaxDouble);
 }
 
 // One pass over the arguments of pw85_contact_function_method: true when
@@ -130,9 +136,10 @@ template <class V, class Vc, class Sy>
 PW85_ALWAYS_INLINE lanes::MaskOf<V> screen_contact_lanes(Vc const &r, Sy const &q1,
                                                          Sy const &q2, double lo,
                                                          double hi) noexcept {
-  return offset_in_range<V>(r, lo, hi) &
-         matrix_in_range_spd(q1[0], q1[1], q1[2], q1[3], q1[4], q1[5], lo, hi) &
-         matrix_in_range_spd(q2[0], q2[1], q2[2], q2[3], q2[4], q2[5], lo, hi);
+  return reinterpret_cast<lanes::MaskOf<V>>(
+      offset_in_range<V>(r, lo, hi) &
+      matrix_in_range_spd(q1[0], q1[1], q1[2], q1[3], q1[4], q1[5], lo, hi) &
+      matrix_in_range_spd(q2[0], q2[1], q2[2], q2[3], q2[4], q2[5], lo, hi));
 }
 
 }  // namespace pw85

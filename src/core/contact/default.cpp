@@ -181,12 +181,6 @@ __attribute__((noinline)) Status dd_bracket(Vec3 const &r, Sym3 const &q1_in,
   return res.mu2_error <= kDefaultRelAccuracy * res.mu2 ? kOk : kInaccurate;
 }
 
-// Iterations counted for one pair (an int, active true) or per lane (the
-// mask, -1 in the active lanes, subtracted).
-PW85_ALWAYS_INLINE void count_active(int &n, bool active) noexcept { n += active; }
-template <class Mask>
-PW85_ALWAYS_INLINE void count_active(Mask &n, Mask active) noexcept { n -= active; }
-
 // f by the stationary form (f_dd.hpp, eq. (M11)) at lambda: the one-pair
 // call, or that call lane by lane in the lanes of want (0 in the others).
 PW85_ALWAYS_INLINE double stationary_form(double lambda, Vec3 const &r, Sym3 const &q1,
@@ -486,33 +480,17 @@ PW85_TARGET_V3 void first_step_lanes_v3(double const *const rp[lanes::kLanes],
 #endif
 
 #if PW85_ISA_LEVELS
-// The rational step (docs/methods.md, "PW85_METHOD_DEFAULT"): from the
-// start (M24) (or (M22) where (M24) finds no bracket), Halley steps (M8)
-// on f evaluated from the seven
-// double-double coefficients (f_rational_dd.hpp), whose error does not grow
-// with the conditioning of Q(lambda), until the quartic Taylor model (M18)
-// at the current lambda is accurate (rational_decide, rational_step.hpp).
-// False (the caller then runs the general method) when an evaluation fails
-// or the iteration does not settle.
-PW85_ALWAYS_INLINE bool rational_iterate(RationalDD const &k, double lambda0,
-                                         MethodResult &res) noexcept {
-  double lo = 0.0, hi = 1.0, lambda = lambda0;
-  RatEval e;
+// rational_iterate (rational_step.hpp) for one pair from lambda0: true
+// with res written when it accepts.
+PW85_ALWAYS_INLINE bool rational_accepted(RationalDD const &k, double lambda0,
+                                          MethodResult &res) noexcept {
+  double mu2 = 0.0, lam = 0.0, err = 0.0;
   res.iterations = 0;
-  for (int it = 0; it < kAdjMaxIter; ++it) {
-    ++res.iterations;
-    if (!f_eval_rational(lambda, k, e)) return false;
-    RationalDecision<double> const d = rational_decide(lambda, e, lo, hi);
-    if (d.done) {
-      res.mu2 = d.mu2;
-      res.lambda = d.lam;
-      res.mu2_error = d.err;
-      return true;
-    }
-    if (d.tiny) return false;
-    lambda = d.next;
-  }
-  return false;
+  if (!rational_iterate(k, lambda0, true, mu2, lam, err, res.iterations)) return false;
+  res.mu2 = mu2;
+  res.lambda = lam;
+  res.mu2_error = err;
+  return true;
 }
 
 // The rational step with its inputs: the seven coefficients, the start
@@ -529,7 +507,7 @@ PW85_V4_INLINE bool rational_v4(
   bool const coef_ok = rational_coefficients_dd(r, q1, q2, k);
   double lambda0 = scan_start(r, q1, q2);
   if (lambda0 < 0.0) lambda0 = default_start(r, q1, q2);
-  return coef_ok && rational_iterate(k, lambda0, res);
+  return coef_ok && rational_accepted(k, lambda0, res);
 }
 
 // The rational step again where d0 or d3 failed its bound (cancellation
@@ -543,7 +521,7 @@ PW85_V4_INLINE bool rational_precise_v4(
     return false;
   double lambda0 = scan_start(r, q1, q2);
   if (lambda0 < 0.0) lambda0 = default_start(r, q1, q2);
-  return rational_iterate(k, lambda0, res);
+  return rational_accepted(k, lambda0, res);
 }
 
 // The general method compiled for x86-64-v4, from its own start (M22), with

@@ -233,20 +233,7 @@ PW85_TARGET_V4 void rational_lanes_v4(double const *const rp[W], double const *c
     M8 active = screen & coefficients(r, q1, q2, k);
     V8 lambda{};
     if (any(active)) lambda = grid_start(r, q1, q2, active, rp, q1p, q2p);
-    V8 lo{}, hi = bc(1.0);
-    for (int it = 0; it < kHalleyMaxIter && any(active); ++it) {
-      iters -= active;  // + 1 in the active lanes
-      RatEvalT<V8> e;
-      active &= f_eval_rational(lambda, k, e);
-      RationalDecision<V8> const d = rational_decide(lambda, e, lo, hi);
-      M8 const done = active & d.done;
-      mu2 = select(done, d.mu2, mu2);
-      lam = select(done, d.lam, lam);
-      err = select(done, d.err, err);
-      accepted |= done;
-      active &= ~done & ~d.tiny;
-      lambda = d.next;
-    }
+    accepted = rational_iterate(k, lambda, active, mu2, lam, err, iters);
   }
   // The promise checked after every method (methods.cpp, checked).
   M8 const kept = (mu2 >= 0.0) & (lam >= 0.0) & (lam <= 1.0) & (err == err);

@@ -14,6 +14,7 @@
 #include "common/isa.hpp"
 #include "common/lanes.hpp"
 #include "contact/default_params.hpp"
+#include "eval/f_rational_dd.hpp"
 
 namespace pw85 {
 
@@ -114,6 +115,46 @@ PW85_ALWAYS_INLINE RationalDecision<T> rational_decide(T lambda, E const &e, T &
     }
   }
   return d;
+}
+
+// Iterations counted for one pair (an int, active true) or per lane (the
+// mask, -1 in the active lanes, subtracted).
+PW85_ALWAYS_INLINE void count_active(int &n, bool active) noexcept { n += active; }
+template <class Mask>
+PW85_ALWAYS_INLINE void count_active(Mask &n, Mask active) noexcept { n -= active; }
+
+// The rational iteration (docs/methods.md, "PW85_METHOD_DEFAULT"): from
+// lambda, Halley steps (M8) on f evaluated from the seven coefficients
+// (f_eval_rational, f_rational_dd.hpp) until rational_decide accepts the
+// quartic model (M18), at most kHalleyMaxIter evaluations. One pair
+// (Lane = double, coefficients RationalDD) or one pair per lane, the same
+// operations in each lane. Returns the pairs (lanes) accepted, with mu2,
+// lam, err there; the others declined (an evaluation failed, the step fell
+// below rounding, or no convergence). iterations: counted as in
+// count_active (default.cpp).
+template <class Lane, class Coefficients, class Count>
+PW85_ALWAYS_INLINE lanes::MaskOf<Lane> rational_iterate(Coefficients const &k, Lane lambda,
+                                                        lanes::MaskOf<Lane> active, Lane &mu2,
+                                                        Lane &lam, Lane &err,
+                                                        Count &iterations) noexcept {
+  using lanes::mask_not;
+  using lanes::select;
+  lanes::MaskOf<Lane> accepted{};
+  Lane lo{}, hi = Lane{} + 1.0;
+  for (int it = 0; it < kHalleyMaxIter && lanes::any(active); ++it) {
+    count_active(iterations, active);
+    RatEvalT<Lane> e;
+    active &= f_eval_rational(lambda, k, e);
+    RationalDecision<Lane> const d = rational_decide(lambda, e, lo, hi);
+    lanes::MaskOf<Lane> const done = active & d.done;
+    mu2 = select(done, d.mu2, mu2);
+    lam = select(done, d.lam, lam);
+    err = select(done, d.err, err);
+    accepted |= done;
+    active &= mask_not(done) & mask_not(d.tiny);
+    lambda = d.next;
+  }
+  return accepted;
 }
 
 }  // namespace pw85
