@@ -40,7 +40,7 @@ struct Pair {
 };
 
 // The kernel and the evaluation compiled for x86-64-v4, as in the library
-// (default.cpp inlines them into its v4 variant).
+// (default_variants.cpp inlines them into its v4 variant).
 // dd_ok: the double-double coefficients passed (without det_precise).
 __attribute__((target("arch=x86-64-v4"), noinline)) bool coefficients_v4(Pair const &p,
                                                                         pw85::RationalDD &k,

@@ -1,6 +1,6 @@
 // Vectors of doubles (GCC vector extensions) and their lane-by-lane
 // helpers, for the loops that process several pairs at once
-// (overlap/overlap_lanes.cpp, contact/default.cpp; docs/batch.md,
+// (overlap/overlap_lanes.cpp, contact/default.hpp; docs/batch.md,
 // "Throughput"). No operation mixes lanes.
 #pragma once
 

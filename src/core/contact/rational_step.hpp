@@ -1,8 +1,8 @@
 // The decisions of DEFAULT's Halley iterations (docs/methods.md,
 // "PW85_METHOD_DEFAULT"), written once for one pair (T = double: step 1 of
-// default_body and the rational step, default.cpp) and for one pair per
-// vector lane (T a vector type: first_step_lanes in contact/default.cpp,
-// contact/rational_lanes.cpp). Every lane performs the scalar operations in
+// default_body and the rational step, default.hpp) and for one pair per
+// vector lane (T a vector type: first_step_lanes in contact/default.hpp,
+// contact/default.hpp, rational_lanes). Every lane performs the scalar operations in
 // the same order (those files are compiled without contraction,
 // src/meson.build), so a lane takes the decisions of the one-pair code and
 // computes the same bits.
@@ -81,7 +81,7 @@ PW85_ALWAYS_INLINE T model_increment(T h, E const &e) noexcept {
   return h * (e.df + h * (0.5 * e.d2f + h * (e.d3f * kInv6 + h * e.d4f * kInv24)));
 }
 
-// One step of the rational iteration (default.cpp, rational_iterate) after
+// One step of the rational iteration (default.hpp, rational_iterate) after
 // the evaluation e at lambda (f_eval_rational): done where the quartic
 // model (M18) at lambda is accurate (mu2 = f + the model's increment, at
 // lam = lambda + h, error err: kRationalRel f plus one rounding, the
@@ -131,7 +131,7 @@ PW85_ALWAYS_INLINE void count_active(Mask &n, Mask active) noexcept { n -= activ
 // operations in each lane. Returns the pairs (lanes) accepted, with mu2,
 // lam, err there; the others declined (an evaluation failed, the step fell
 // below rounding, or no convergence). iterations: counted as in
-// count_active (default.cpp).
+// count_active (default.hpp).
 template <class Lane, class Coefficients, class Count>
 PW85_ALWAYS_INLINE lanes::MaskOf<Lane> rational_iterate(Coefficients const &k, Lane lambda,
                                                         lanes::MaskOf<Lane> active, Lane &mu2,

@@ -1,6 +1,6 @@
 // Starting points of the iterations (docs/methods.md, eqs. (M7), (M19), (M20),
 // (M22)), inline so that the instruction-set variants of DEFAULT
-// (default.cpp) compile them for their level. (M22) is DEFAULT's start;
+// (default.hpp) compile them for their level. (M22) is DEFAULT's start;
 // (M19)-(M20) are NEWTON's and RATIONAL's.
 #pragma once
 

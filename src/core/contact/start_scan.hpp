@@ -1,5 +1,5 @@
 // DEFAULT's start on x86-64-v4 (docs/methods.md, eq. (M24)), in place of the
-// Newton iteration of (M22) on the rational step's path (default.cpp,
+// Newton iteration of (M22) on the rational step's path (default.hpp,
 // rational_v4). lambda* is the root of a1(x) = x^2 a2(x), x = lambda /
 // (1 - lambda), with the quartics a_i of (M22) (start.hpp); in t = log x,
 // y(t) = (a1 - x^2 a2) / (a1 + x^2 a2) = tanh((log a1 - log a2) / 2 - t)
@@ -37,7 +37,7 @@ PW85_V4_INLINE __m512d bc(double v) { return _mm512_set1_pd(v); }
 // The sextic sum_n c_n x^n, lane by lane (Estrin's scheme: four levels of
 // FMA after x): at eight points x for one pair (the c_n broadcast,
 // scan_start), or at one point x (broadcast) for one pair per lane
-// (contact/rational_lanes.cpp), the same IEEE operations in each lane.
+// (contact/default.hpp, rational_lanes), the same IEEE operations in each lane.
 PW85_V4_INLINE __m512d sextic(__m512d const c[7], __m512d x) {
   __m512d const x2 = _mm512_mul_pd(x, x), x4 = _mm512_mul_pd(x2, x2);
   __m512d const lo = _mm512_fmadd_pd(x2, _mm512_fmadd_pd(x, c[3], c[2]),

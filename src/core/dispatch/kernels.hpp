@@ -16,6 +16,7 @@
 
 #include "dispatch/variant.hpp"
 #include "common/orientation.hpp"
+#include "contact/default_variants.hpp"
 #include "eval/dd_kernels.hpp"
 #include "overlap/overlap_dd.hpp"
 
@@ -25,6 +26,7 @@ struct Kernels {
   DdKernels const *dd;
   OverlapDdKernels const *overlap_dd;
   OrientationKernels const *orientation;
+  DefaultKernels const *contact_default;
 };
 
 // The table of variant v if the build has it, else of the highest built

@@ -118,7 +118,7 @@ PW85_ALWAYS_INLINE bool f_eval_dd_impl(double lambda, Vec3 const &r, Sym3 const 
 // s is close to Q^{-1} r, so the result then errs by at most ~7u relative:
 // u/2 for each rounded sum and for 1 - lambda, u/2 per operation, the
 // subtraction at most doubling the relative errors of its operands
-// (docs/methods.md, (M11)). DEFAULT (default.cpp) uses the form only where
+// (docs/methods.md, (M11)). DEFAULT (default.hpp) uses the form only where
 // its bound says s is that close. BRENT (brent.cpp) uses it on its
 // Cholesky s, which in the class [0.001, 1000] can be farther; BRENT's
 // error estimate (methods.cpp, eq. (M10)) does not rely on this bound.

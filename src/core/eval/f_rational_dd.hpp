@@ -1,6 +1,6 @@
 // The seven positive coefficients of f (docs/methods.md, eqs. (M12)-(M13))
 // computed in double-double with AVX-512, then f and its derivatives from
-// them in double (DEFAULT's fast path on x86-64-v4, default.cpp).
+// them in double (DEFAULT's fast path on x86-64-v4, default.hpp).
 //
 // With s = 1 - lambda, t = lambda (Bernstein form, eq. (M13)):
 //   f = s t A / B,  A = a0 s^2 + a1 s t + a2 t^2,
@@ -109,7 +109,7 @@ PW85_V4_INLINE __m512d fold_abs(__m512d x, __m512d y, __m512i ia, __m512i ib) {
 // Q1, pb ... tb from Q2, aw = w_k Q1_k, bw = w_k Q2_k, ri rj = w_k r_i r_j
 // (w_k = 1 on the diagonal, 2 off it). Lane by lane: in
 // rational_coefficients_dd lane k holds entry k of one pair; in
-// contact/rational_lanes.cpp the vectors of one entry k hold one pair per
+// contact/default.hpp, rational_lanes the vectors of one entry k hold one pair per
 // lane, and each lane performs the same IEEE operations, so the terms of a
 // pair are the same bits in both. v[j] = the term of coefficient j
 // (a0, a1, a2, 3 d0, d1, d2, 3 d3; products in double-double), m[j] = the
@@ -217,7 +217,7 @@ constexpr int kDetTerms = 20;
 // are below u times these, so mp (1 + 2^-47) >= sum |terms|); det is then
 // within (2^-53 + 2^-56 + 2^-70) det < 1.13 u. T = double (one pair,
 // rational_coefficients_dd) or __m512d (one pair per lane,
-// contact/rational_lanes.cpp), the same IEEE operations in each lane.
+// contact/default.hpp, rational_lanes), the same IEEE operations in each lane.
 template <class T>
 PW85_V4_INLINE lanes::MaskOf<T> det_precise(T const q[6], T &det) noexcept {
   using rdd::fms;
@@ -335,8 +335,8 @@ PW85_V4_INLINE bool rational_dets_precise(Sym3 const &q1, Sym3 const &q2,
 // (Bernstein form above; phi = A / B, f = s t phi, eq. (M12)), and a bound
 // edf on the error of the computed f' (first order in u). f itself is
 // within kRationalRel f of the exact value (positive terms only).
-// One pair (T = double, K = RationalDD: default.cpp) or one pair per lane
-// (T a vector type, K its coefficients: contact/rational_lanes.cpp), the same
+// One pair (T = double, K = RationalDD: default.hpp) or one pair per lane
+// (T a vector type, K its coefficients: contact/default.hpp, rational_lanes), the same
 // IEEE operations in each lane. Returns true (T = double) or the mask of the
 // lanes where the evaluation holds.
 template <class T>
