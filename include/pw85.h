@@ -45,7 +45,7 @@
  * Results and the CPU: PW85_METHOD_DEFAULT runs a different algorithm on
  * x86-64 CPUs with AVX-512 (x86-64-v4) when the library is built with
  * GCC >= 12 and the meson option isa_dispatch enabled (its default): a
- * rational step in double-double first, the general method only when that
+ * coefficient step in double-double first, the general method only when that
  * step declines. Its results there may differ in the last bits from those of
  * another CPU, both within the documented accuracy of the method. This
  * concerns pw85_contact_function_method() and pw85_dca() with
@@ -388,7 +388,7 @@ PW85_API int pw85_dca_ex(double const u[PW85_DIM], double const q1[PW85_SYM],
  * of Q(lambda)); when the estimated error exceeds 4e-15 mu2, f is
  * re-evaluated by a compensated (double-double) stationary form, then if
  * needed by L D L^T in double-double. On x86-64 CPUs with AVX-512 (GCC >= 12,
- * isa_dispatch enabled) a rational step in double-double comes first, so the
+ * isa_dispatch enabled) a coefficient step in double-double comes first, so the
  * last bits may differ from another CPU's (top of this header). Documented
  * relative accuracy of mu2: 1e-14. */
 #define PW85_METHOD_DEFAULT 0

@@ -30,7 +30,6 @@ using VecD = typename Width<W>::V;
 
 // The width of the lane loops that do not choose one per instruction set.
 constexpr int kLanes = 4;
-typedef VecD<kLanes> V;
 
 constexpr long long kSign = static_cast<long long>(0x8000000000000000ULL);
 
@@ -45,7 +44,6 @@ template <class T>
 using MaskOf = decltype(T{} < T{});
 template <int W>
 using MaskD = MaskOf<VecD<W>>;
-typedef MaskD<kLanes> M;
 
 // The unsigned mask type of a vector type: 0 or ~0 per lane.
 template <int W>
@@ -64,9 +62,9 @@ using UMaskOf = typename UMaskWidth<width<T>()>::M;
 // operation on 512-bit comparisons is then compiled lane by lane (vcomisd,
 // setcc, insertions). Converted to the unsigned mask type, a comparison is
 // not folded so and compiles to vcmppd into a mask register and a masked
-// move (pw85_overlap_pairs, x86-64-v4, class 0: 23.8 ns per pair with the
-// signed masks and vmax below as a select, 11.6 with these and vmax as
-// written; build/bench/bench_batch --reps 7).
+// move (pw85_overlap_pairs and pw85_contact_function_pairs on x86-64-v4:
+// build/bench/bench_batch --reps 7). Code that may be inlined into an
+// x86-64-v4 function combines comparisons with these.
 #define PW85_LANES_COMPARISON(name, op)                                          \
   template <class T>                                                             \
   PW85_ALWAYS_INLINE UMaskOf<T> name(T x, T y) noexcept {                        \
@@ -86,8 +84,8 @@ PW85_LANES_COMPARISON(ne, !=)
 
 template <class T>
 PW85_ALWAYS_INLINE T vabs(T x) noexcept {
-  typedef MaskOf<T> K;
-  return reinterpret_cast<T>(reinterpret_cast<K>(x) & (K{} + ~kSign));
+  typedef MaskOf<T> Mask;
+  return reinterpret_cast<T>(reinterpret_cast<Mask>(x) & (Mask{} + ~kSign));
 }
 // m ? a : b, lane by lane.
 template <class K, class T>
@@ -101,9 +99,9 @@ PW85_ALWAYS_INLINE T vmax(T a, T b) noexcept { return a > b ? a : b; }
 // std::copysign(x, y), lane by lane.
 template <class T>
 PW85_ALWAYS_INLINE T copysign(T x, T y) noexcept {
-  typedef MaskOf<T> K;
-  return reinterpret_cast<T>((reinterpret_cast<K>(x) & (K{} + ~kSign)) |
-                             (reinterpret_cast<K>(y) & (K{} + kSign)));
+  typedef MaskOf<T> Mask;
+  return reinterpret_cast<T>((reinterpret_cast<Mask>(x) & (Mask{} + ~kSign)) |
+                             (reinterpret_cast<Mask>(y) & (Mask{} + kSign)));
 }
 template <class T>
 PW85_ALWAYS_INLINE T vsqrt(T x) noexcept {
@@ -136,8 +134,8 @@ PW85_ALWAYS_INLINE bool mask_not(bool m) noexcept { return !m; }
 // are loaded as one 256-bit vector per pair and those pairs of elements
 // after them as one 128-bit vector per pair, then transposed by shuffles:
 // written lane by lane, GCC 12 builds these vectors in pieces through the
-// stack (pw85_overlap_pairs, x86-64-v4, class 0: 11.6 ns per pair that way,
-// 10.6 this way; build/bench/bench_batch --reps 7, same load).
+// stack (slower: pw85_overlap_pairs, x86-64-v4, build/bench/bench_batch
+// --reps 7).
 template <int N, int W>
 PW85_ALWAYS_INLINE void gather(double const *const p[W], VecD<W> out[N]) noexcept {
   int i = 0;

@@ -96,8 +96,8 @@ Status contact_method_entry(double const *r12, double const *q1, double const *q
 Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                        MethodResult &res) noexcept;      // default.hpp
 // DEFAULT for kDefaultLanes pairs at once, pair l = (r[l], q1[l], q2[l])
-// (docs/batch.md, "Throughput"): on x86-64-v4 the rational step in eight
-// lanes (default.hpp, rational_lanes), elsewhere the common path of contact_default
+// (docs/batch.md, "Throughput"): on x86-64-v4 the coefficient step in eight
+// lanes (default.hpp, coefficient_step_lanes), elsewhere the common path of contact_default
 // in two times four lanes (default.hpp, first_step_lanes). status[l] != kLaneUndecided:
 // res[l] and status[l] are what pw85_contact_function_method(..., DEFAULT,
 // ...) gives, bit for bit; kLaneUndecided: res[l] is meaningless and the

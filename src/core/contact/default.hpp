@@ -1,30 +1,31 @@
-// PW85_METHOD_DEFAULT (docs/methods.md, section "DEFAULT"). On x86-64-v4,
-// first the rational step
-// (rational_iterate below: f from its seven coefficients in double-double,
-// f_rational_dd.hpp), from the grid start (M24) (start_scan.hpp); where
-// only d0 or d3 failed its bound, the same step again with those two from
-// det_precise (declined_v4); when it declines, and on other CPUs:
-//  0. from the start (M22) (start.hpp: Newton on the fixed-point equation of
-//     (M19) in logarithmic coordinates), a safeguarded
-//     Halley iteration as NEWTON's (newton.cpp) but with f and its
-//     derivatives from the adjugate of Q(lambda) (f_adj.hpp, eq. (M16)),
-//     then f at the final lambda by the stationary form (f_dd.hpp, eq. (M11))
-//     whose error is second order in the error of s, bounded componentwise
-//     (eq. (M17)); if the total estimate is below kFastRel * mu2 (most pairs)
-//     that is the result; otherwise:
-//  1. the NEWTON iteration in double (newton.cpp) with its error estimate
-//     (eq. (M10));
-//  2. f at the final lambda by the stationary form 2 r^T s - s^T Q s with
-//     compensated dot products (f_dd.hpp, eq. (M11)), whose error is second
-//     order in the error of the double solve; if the estimate is below
-//     kFastRel * mu2, that result is returned (the fast path, taken by most
-//     pairs);
+// PW85_METHOD_DEFAULT (docs/methods.md, section "PW85_METHOD_DEFAULT"):
+// the bodies, each written once for one pair and, where the batch calls
+// run it in vector lanes, for one pair per lane; default_variants.cpp
+// compiles them for each instruction set. On x86-64-v4, first the
+// coefficient step (coefficient_step below: f from its seven coefficients in
+// double-double, f_coefficients_dd.hpp, from the grid start (M24),
+// start_scan.hpp; where only d0 or d3 failed its bound, the same step again
+// with those two from det_precise, coefficient_step_precise); when it
+// declines, and on other CPUs, the general method (default_body), steps
+// numbered as in docs/methods.md:
+//  1. from the start (M22) (start.hpp: Newton on the fixed-point equation of
+//     (M19) in logarithmic coordinates), a safeguarded Halley iteration as
+//     NEWTON's (newton.cpp) but with f and its derivatives from the
+//     adjugate of Q(lambda) (f_adj.hpp, eq. (M16)) until the quartic model
+//     (M18) is accurate; its result is returned when the first-order error
+//     of the double f (eqs. (M10), (M17)), or else that of f by the
+//     stationary form (f_dd.hpp, eq. (M11), second order in the error of
+//     s), is below kFastRel * mu2 (most pairs) (first_step);
+//  2. otherwise the NEWTON iteration in double (newton.cpp) with its error
+//     estimate (eq. (M10)), then the stationary form 2 r^T s - s^T Q s with
+//     compensated dot products at its final lambda; either result is
+//     returned when its estimate is below kFastRel * mu2;
 //  3. otherwise f and f' are re-evaluated in double-double at the current
 //     lambda (f_dd.hpp, eq. (M11)) and Newton steps on f' are taken with the
 //     double-precision f'' as slope, until the gap f'^2 / (2|f''|) is below
 //     2^-60 f. Since mu2 = max f, an error delta on lambda changes mu2 by
 //     |f''| delta^2 / 2 only: the accuracy of mu2 is the accuracy of the
-//     double-double f, about kappa(Q) 2^-104 relative.
+//     double-double f, about kappa(Q) 2^-104 relative;
 //  4. when the double iteration failed (Q(lambda) not numerically positive
 //     definite in double) or its f'' is not accurate to 2^-6 (maximiser
 //     very near 0 or 1), dd_bracket (eq. (M26)): double-double f and f'
@@ -43,10 +44,10 @@
 #include "contact/default_params.hpp"
 #include "eval/f_adj.hpp"
 #include "eval/f_dd.hpp"
-#include "eval/f_rational_dd.hpp"
+#include "eval/f_coefficients_dd.hpp"
 #include "common/isa.hpp"
 #include "contact/newton.hpp"
-#include "contact/rational_step.hpp"
+#include "contact/halley_step.hpp"
 #include "contact/start_lanes.hpp"
 #include "contact/start_scan.hpp"
 
@@ -302,7 +303,7 @@ PW85_ALWAYS_INLINE FirstStep<Lane> first_step(Vec const &r, Sym const &q1, Sym c
 }
 
 // The whole method, inlined into one function per instruction-set level
-// (contact_default below). Its hot part, the start and the adjugate
+// (default_variants.cpp). Its hot part, the start and the adjugate
 // iteration of step 1, is inline (start.hpp, f_adj.hpp) and so compiled for
 // that level; steps 2-4 call the baseline code of newton.cpp and f_dd.hpp.
 PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
@@ -353,7 +354,7 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
       }
     }
   }
-  // Slow path: double-double.
+  // Step 3: Newton steps on the double-double f'.
   // Relative error of the double-double phi: the double estimate with u
   // replaced by u^2 (times 8 for the extra operations of double-double),
   // plus the final rounding to double.
@@ -471,48 +472,47 @@ PW85_ALWAYS_INLINE void first_step_lanes(double const *const rp[lanes::kLanes],
 }
 
 #if PW85_ISA_LEVELS
-// rational_iterate (rational_step.hpp) for one pair from lambda0: true
+// coefficient_iterate (halley_step.hpp) for one pair from lambda0: true
 // with res written when it accepts.
-PW85_ALWAYS_INLINE bool rational_accepted(RationalDD const &k, double lambda0,
+PW85_ALWAYS_INLINE bool coefficient_step_accepted(CoefficientsDD const &k, double lambda0,
                                           MethodResult &res) noexcept {
   double mu2 = 0.0, lam = 0.0, err = 0.0;
   res.iterations = 0;
-  if (!rational_iterate(k, lambda0, true, mu2, lam, err, res.iterations)) return false;
+  if (!coefficient_iterate(k, lambda0, true, mu2, lam, err, res.iterations)) return false;
   res.mu2 = mu2;
   res.lambda = lam;
   res.mu2_error = err;
   return true;
 }
 
-// The rational step with its inputs: the seven coefficients, the start
-// (M24) ((M22) where (M24) finds no bracket), then rational_iterate. The
+// The coefficient step with its inputs: the seven coefficients, the start
+// (M24) ((M22) where (M24) finds no bracket), then coefficient_iterate. The
 // coefficients come first in program order: their independent vector work
-// then overlaps with the start's dependency chain (measured: 9-14 ns per
-// call less than the other order). Inlined into contact_v4 (default_variants.cpp), which
-// calls the rest out of line (declined_v4): 0.3-2 ns per call
-// faster than a separate function (once inlined together with default_body
-// it measured 8 ns slower).
-PW85_V4_INLINE bool rational_v4(
+// then overlaps with the start's dependency chain. Inlined into contact_v4
+// (default_variants.cpp), which calls the rest out of line (declined_v4);
+// inlined together with default_body it was slower. Measured by
+// build/bench/bench_batch (one-pair DEFAULT loop).
+PW85_V4_INLINE bool coefficient_step(
     Vec3 const &r, Sym3 const &q1, Sym3 const &q2, MethodResult &res) noexcept {
-  RationalDD k;
-  bool const coef_ok = rational_coefficients_dd(r, q1, q2, k);
+  CoefficientsDD k;
+  bool const coef_ok = coefficients_dd(r, q1, q2, k);
   double lambda0 = scan_start(r, q1, q2);
   if (lambda0 < 0.0) lambda0 = default_start(r, q1, q2);
-  return coef_ok && rational_accepted(k, lambda0, res);
+  return coef_ok && coefficient_step_accepted(k, lambda0, res);
 }
 
-// The rational step again where d0 or d3 failed its bound (cancellation
-// beyond 2^45: 18 % of bench_contact's class-3 pairs), with those two from
-// det_precise (f_rational_dd.hpp). False where rational_v4 declined for
+// The coefficient step again where d0 or d3 failed its bound (cancellation
+// beyond 2^45: nearly singular Q1 or Q2), with those two from det_precise
+// (f_coefficients_dd.hpp). False where coefficient_step declined for
 // another reason.
-PW85_V4_INLINE bool rational_precise_v4(
+PW85_V4_INLINE bool coefficient_step_precise(
     Vec3 const &r, Sym3 const &q1, Sym3 const &q2, MethodResult &res) noexcept {
-  RationalDD k;
-  if (rational_coefficients_dd(r, q1, q2, k) || !rational_dets_precise(q1, q2, k))
+  CoefficientsDD k;
+  if (coefficients_dd(r, q1, q2, k) || !coefficients_dets_precise(q1, q2, k))
     return false;
   double lambda0 = scan_start(r, q1, q2);
   if (lambda0 < 0.0) lambda0 = default_start(r, q1, q2);
-  return rational_accepted(k, lambda0, res);
+  return coefficient_step_accepted(k, lambda0, res);
 }
 
 #endif
@@ -536,13 +536,13 @@ PW85_V4_INLINE __mmask8 to_bits(M8 m) noexcept {
   return _mm512_movepi64_mask(reinterpret_cast<__m512i>(m));
 }
 
-// The coefficients of rational_coefficients_dd (f_rational_dd.hpp), one
+// The coefficients of coefficients_dd (f_coefficients_dd.hpp), one
 // pair per lane.
 struct CoefL {
   V8 c[8];
 };
 
-// The permutations of rational_coefficients_dd (ip, iq, is, it), and the
+// The permutations of coefficients_dd (ip, iq, is, it), and the
 // factors of w_k r_i r_j, per adjugate entry k (storage order 00 01 02 11
 // 12 22).
 constexpr int kIp[kSym] = {3, 2, 1, 0, 1, 0}, kIq[kSym] = {5, 4, 4, 5, 2, 3};
@@ -568,7 +568,7 @@ PW85_V4_INLINE void pair_sum(Vec3L<W> const &r, SymL<W> const &a, SymL<W> const 
   }
 }
 
-// rational_coefficients_dd for the eight pairs: lane k of its vectors
+// coefficients_dd for the eight pairs: lane k of its vectors
 // (entry k) is the vector of entry k here, and its three rounds of
 // transposed sums become, per coefficient, the same sums in the same tree,
 // ((0 + 1) + (2 + 3)) + ((4 + 5) + (6 + 7)), but for the last term: entries
@@ -589,7 +589,7 @@ PW85_V4_INLINE M8 coefficients(Vec3L<W> const &r, SymL<W> const &a, SymL<W> cons
     m0123[j] = m0123[j] + m[j];
   }
   pair_sum(r, a, b, 4, v, m);
-  // The scale, as in rational_coefficients_dd.
+  // The scale, as in coefficients_dd.
   V8 const tr = ((a[0] + a[3]) + a[5]) + ((b[0] + b[3]) + b[5]);
   M8 const bits = reinterpret_cast<M8>(tr);
   M8 const e = ((bits >> 52) & 0x7FF) - 1023;
@@ -605,7 +605,7 @@ PW85_V4_INLINE M8 coefficients(Vec3L<W> const &r, SymL<W> const &a, SymL<W> cons
       ok &= okj;
   }
   // d0 and d3 where their bound fails: det_precise, as in
-  // rational_dets_precise (all eight lanes, when one needs it).
+  // coefficients_dets_precise (all eight lanes, when one needs it).
   SymL<W> const *const qs[2] = {&a, &b};
   for (int mat = 0; mat < 2; ++mat) {
     if (okd[mat] != 0xFF) {
@@ -639,11 +639,10 @@ PW85_V4_INLINE V8 grid_start(Vec3L<W> const &r, SymL<W> const &q1, SymL<W> const
   V8 xa{};
   // The points in groups of kCoarseGroup, evaluated before their masks
   // are taken in order (a lane found at a point ignores the later ones, so
-  // k and xa are those of the point-by-point scan). Groups of 4 against one
-  // point per test of found: 2.2 / 3.7 / 3.9 / 1.3 % less time per pair in
-  // classes 0-3; groups of 2: 0-0.8 %; of 8: 3-5 % more, of 16: 4-6 % more
-  // (pw85_contact_function_pairs over the one-pair loop, medians of 6 runs
-  // alternating the builds, build/bench/bench_batch --n 100000 --reps 5).
+  // k and xa are those of the point-by-point scan). Groups of 4 were
+  // faster than 1, 2, 8 or 16 points per test of found
+  // (pw85_contact_function_pairs, build/bench/bench_batch --n 100000
+  // --reps 5, runs alternating the builds).
   constexpr int kCoarseGroup = 4;
   static_assert(32 % kCoarseGroup == 0, "whole groups");
   for (int i0 = 0; i0 < 32 && found != 0xFF; i0 += kCoarseGroup) {
@@ -665,12 +664,10 @@ PW85_V4_INLINE V8 grid_start(Vec3L<W> const &r, SymL<W> const &q1, SymL<W> const
   // to 1..15 (none: 15), per lane in jv. Point j = 0 is not evaluated: x_0
   // = xa * 1 is the coarse point k - 1, whose value, the same operations
   // on the same x, was positive. Then x1 = x_(j-1), x2 = x_j and n1, n2
-  // there, the same products and the same sextic as at the grid points.
-  // Against carrying n1, n2, x1, x2 through the loop by four blends per
-  // point and evaluating points 0 and 15: 1.8 / 2.6 / 2.6 / 1.7 % less time
-  // per pair in classes 0-3 (pw85_contact_function_pairs over the one-pair
-  // loop, medians of 7 runs alternating the builds,
-  // build/bench/bench_batch --n 100000 --reps 5).
+  // there, the same products and the same sextic as at the grid points:
+  // faster than carrying n1, n2, x1, x2 through the loop by four blends per
+  // point (build/bench/bench_batch --n 100000 --reps 5, runs alternating
+  // the builds).
   __m512i jv = _mm512_set1_epi64(15);
   found = static_cast<__mmask8>(~on_grid);
   for (int j = 1; j < 15 && found != 0xFF; ++j) {
@@ -697,22 +694,22 @@ PW85_V4_INLINE V8 grid_start(Vec3L<W> const &r, SymL<W> const &q1, SymL<W> const
 }
 
 
-// The rational step for kDefaultLanes pairs at once (docs/batch.md,
+// The coefficient step for kDefaultLanes pairs at once (docs/batch.md,
 // "Throughput"), pair l in lane l of each vector: the screen of the entry
 // (screen.hpp, screen_contact_lanes), the seven coefficients (M12)-(M13)
 // in double-double (coefficients below: rdd::terms per adjugate entry, then
 // the sums over the entries; det_precise for d0, d3 in lanes where their
 // bound fails), the grid start (M24) (grid_start below; (M22) for a lane
-// whose root is off the grid), and rational_iterate (rational_step.hpp).
-// Every lane performs the IEEE operations of the one-pair code (rational_v4)
+// whose root is off the grid), and coefficient_iterate (halley_step.hpp).
+// Every lane performs the IEEE operations of the one-pair code (coefficient_step)
 // in the same order (no contraction, src/meson.build), so a lane carries
-// the bits of pw85_contact_function_method. A lane whose rational step
+// the bits of pw85_contact_function_method. A lane whose coefficient step
 // declines runs general (the general method alone, as the one-pair call
 // after that step); a lane that fails the screen, or whose result breaks
 // the promise that methods.cpp checks after every method, is returned
 // undecided for the caller's one-pair call.
 template <Status (*general)(Vec3 const &, Sym3 const &, Sym3 const &, MethodResult &) noexcept>
-PW85_V4_INLINE void rational_lanes(double const *const rp[W], double const *const q1p[W],
+PW85_V4_INLINE void coefficient_step_lanes(double const *const rp[W], double const *const q1p[W],
                                    double const *const q2p[W], MethodResult res[W],
                                    int status[W]) noexcept {
   Vec3L<W> r;
@@ -729,12 +726,12 @@ PW85_V4_INLINE void rational_lanes(double const *const rp[W], double const *cons
   V8 mu2{}, lam{}, err{};
   M8 iters{};
   if (any(screen)) {
-    // rational_v4: the coefficients, the start, rational_iterate.
+    // coefficient_step: the coefficients, the start, coefficient_iterate.
     CoefL k;
     M8 active = screen & coefficients(r, q1, q2, k);
     V8 lambda{};
     if (any(active)) lambda = grid_start(r, q1, q2, active, rp, q1p, q2p);
-    accepted = rational_iterate(k, lambda, active, mu2, lam, err, iters);
+    accepted = coefficient_iterate(k, lambda, active, mu2, lam, err, iters);
   }
   // The promise checked after every method (methods.cpp, checked).
   M8 const kept = (mu2 >= 0.0) & (lam >= 0.0) & (lam <= 1.0) & (err == err);
@@ -748,7 +745,7 @@ PW85_V4_INLINE void rational_lanes(double const *const rp[W], double const *cons
       o.iterations = static_cast<int>(iters[l]);
       status[l] = kept[l] != 0 ? kOk : kLaneUndecided;
     } else if (screen[l] != 0) {
-      // The rational step declined: the general method, as in
+      // The coefficient step declined: the general method, as in
       // the one-pair call.
       Status const s = general(view_vec3(rp[l]), view_sym3(q1p[l]),
                                                   view_sym3(q2p[l]), o);

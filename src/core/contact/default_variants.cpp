@@ -44,7 +44,7 @@ PW85_DEFAULT_LANES_VARIANT(v3, PW85_TARGET_V3)
 // The general method compiled for x86-64-v4, from its own start (M22), with
 // the same IEEE operations as the portable one. Out of line: inlined into
 // contact_v4 below, its register use made every call save and restore every
-// callee-saved register, the rational step's calls included.
+// callee-saved register, the coefficient step's calls included.
 PW85_TARGET_V4 __attribute__((noinline)) Status general_v4(Vec3 const &r, Sym3 const &q1,
                                                            Sym3 const &q2,
                                                            MethodResult &res) noexcept {
@@ -52,23 +52,23 @@ PW85_TARGET_V4 __attribute__((noinline)) Status general_v4(Vec3 const &r, Sym3 c
   return default_body(r, q1, q2, res);
 }
 
-// After rational_v4 declined: rational_precise_v4, then the general method.
+// After coefficient_step declined: coefficient_step_precise, then the general method.
 // A separate function that recomputes the coefficients and the start:
-// rational_precise_v4 called from rational_v4 with its coefficients (inline
-// or not) made the one-pair call slower where it never runs (classes 0-2
-// of bench_batch).
+// coefficient_step_precise called from coefficient_step with its
+// coefficients (inline or not) made the one-pair call slower where it never
+// runs (build/bench/bench_batch, classes 0-2).
 PW85_TARGET_V4 __attribute__((noinline)) Status declined_v4(Vec3 const &r, Sym3 const &q1,
                                                             Sym3 const &q2,
                                                             MethodResult &res) noexcept {
-  if (rational_precise_v4(r, q1, q2, res)) return kOk;
+  if (coefficient_step_precise(r, q1, q2, res)) return kOk;
   return general_v4(r, q1, q2, res);
 }
 
-// The rational step, and the general method when it declines.
+// The coefficient step, and the general method when it declines.
 PW85_TARGET_V4 Status contact_v4(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                                  MethodResult &res) noexcept {
   res.method = kMethodDefault;
-  if (rational_v4(r, q1, q2, res)) return kOk;
+  if (coefficient_step(r, q1, q2, res)) return kOk;
   return declined_v4(r, q1, q2, res);
 }
 
@@ -77,7 +77,7 @@ PW85_TARGET_V4 void lanes_v4(double const *const r[kDefaultLanes],
                              double const *const q2[kDefaultLanes],
                              MethodResult res[kDefaultLanes],
                              int status[kDefaultLanes]) noexcept {
-  lanes8::rational_lanes<general_v4>(r, q1, q2, res, status);
+  lanes8::coefficient_step_lanes<general_v4>(r, q1, q2, res, status);
 }
 #endif
 

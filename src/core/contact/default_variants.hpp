@@ -22,7 +22,7 @@ struct DefaultKernels {
                 int status[kDefaultLanes]) noexcept;
 };
 
-// The kernels of variant v: x86-64-v4 runs the rational step first (one
+// The kernels of variant v: x86-64-v4 runs the coefficient step first (one
 // pair and eight lanes); x86-64-v3 the general method with its first step
 // in AVX2 lanes; portable and fma the portable code.
 DefaultKernels const *default_kernels_for(Variant v) noexcept;

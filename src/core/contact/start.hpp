@@ -18,12 +18,12 @@ namespace pw85 {
 template <class Vc, class Sy>
 PW85_ALWAYS_INLINE auto newton_start(Vc const &r, Sy const &q1, Sy const &q2) noexcept {
   using lanes::vsqrt;
-  typedef decltype(dot(r, r)) V;
-  V const h1 = vsqrt(dot(r, multiply(q1, r)));
-  V const h2 = vsqrt(dot(r, multiply(q2, r)));
-  V const l0 = h1 / (h1 + h2);
-  lanes::MaskOf<V> const in = (l0 > 0.0) & (l0 < 1.0);
-  return lanes::select(in, l0, V{} + 0.5);
+  typedef decltype(dot(r, r)) Lane;
+  Lane const h1 = vsqrt(dot(r, multiply(q1, r)));
+  Lane const h2 = vsqrt(dot(r, multiply(q2, r)));
+  Lane const l0 = h1 / (h1 + h2);
+  lanes::MaskOf<Lane> const in = (l0 > 0.0) & (l0 < 1.0);
+  return lanes::select(in, l0, Lane{} + 0.5);
 }
 
 namespace detail {
@@ -94,8 +94,8 @@ PW85_ALWAYS_INLINE double fixed_point_start(Vec3 const &r, Sym3 const &q1, Sym3 
     // the others), a_i <= ~2^420, and a_i >= ~2^-460 for eigenvalue ratios
     // up to 2^40, so a1 a2 stays a normal double. Beyond, an overflow makes
     // lambda NaN ((M7) below) and an underflow gives a worse start, never a
-    // wrong result. sqrt(a1) sqrt(a2) would avoid both; it measured ~2 %
-    // slower in bench_contact (one more square root per step).
+    // wrong result. sqrt(a1) sqrt(a2) would avoid both, at one more square
+    // root per step on the chain (slower: build/bench/bench_contact).
     double const g = std::sqrt(a1 * a2), scale = 1.0 / (a1 + a2);
     lam[k - 1] = a1 / (a1 + g);  // h1 / (h1 + h2), off the chain
     double const c1 = a2 * scale, cm = g * scale, c2 = a1 * scale;
@@ -213,7 +213,7 @@ PW85_ALWAYS_INLINE V log_newton_iterate(StartQuarticsOf<V> const &sq, double tol
   static_assert(1 <= kMin && kMin <= kMax, "step counts");
   using lanes::select;
   using lanes::vabs;
-  typedef lanes::MaskOf<V> K;
+  typedef lanes::MaskOf<V> Mask;
   constexpr double kClamp = kLogNewtonClamp;
   V const a10 = sq.a1[0], a11 = sq.a1[1], a12 = sq.a1[2], a13 = sq.a1[3], a14 = sq.a1[4];
   V const a20 = sq.a2[0], a21 = sq.a2[1], a22 = sq.a2[2], a23 = sq.a2[3], a24 = sq.a2[4];
@@ -222,7 +222,7 @@ PW85_ALWAYS_INLINE V log_newton_iterate(StartQuarticsOf<V> const &sq, double tol
   V const b12 = 2.0 * a12, b13 = 3.0 * a13, b14 = 4.0 * a14;
   V const b22 = 2.0 * a22, b23 = 3.0 * a23, b24 = 4.0 * a24;
   V out{};
-  K done{};
+  Mask done{};
   for (int k = 1;; ++k) {
     // Estrin's scheme (short dependency chains).
     V const x2 = x * x;
@@ -234,14 +234,14 @@ PW85_ALWAYS_INLINE V log_newton_iterate(StartQuarticsOf<V> const &sq, double tol
     V n = a1 - b, dd = a1 + b;  // tanh(log(rho) / 2) = n / dd
     V const w = 2.0 * (a1 * a2);
     V const g = w - x * (d1 * a2 - d2 * a1);  // (1 - G') w
-    K const gp = g > 0.0;
+    Mask const gp = g > 0.0;
     n = select(gp, n * w, n);  // delta = n / dd
     dd = select(gp, dd * g, dd);
     V const lim = kClamp * dd;
     V const nc = select(vabs(n) > lim, lanes::copysign(lim, n), n);
     V const num = x * (2.0 * dd + nc), den = 2.0 * dd - nc;
-    K stop = k >= kMin ? K(vabs(n) <= tol * dd) : K{};
-    if (k >= kMax) stop = lanes::all_set<K>();
+    Mask stop = k >= kMin ? Mask(vabs(n) <= tol * dd) : Mask{};
+    if (k >= kMax) stop = lanes::all_set<Mask>();
     stop &= lanes::mask_not(done);
     if (lanes::any(stop)) {
       V const l = num / (den + num);
@@ -251,7 +251,7 @@ PW85_ALWAYS_INLINE V log_newton_iterate(StartQuarticsOf<V> const &sq, double tol
     }
     x = num / den;
   }
-  K const in = (out > 0.0) & (out < 1.0);
+  Mask const in = (out > 0.0) & (out < 1.0);
   if (lanes::any(lanes::mask_not(in))) out = select(in, out, newton_start(r, q1, q2));
   return out;
 }

@@ -1,6 +1,6 @@
 // The Sym3 / Vec3 algebra of sym3.hpp for W pairs at once, pair l in lane l
 // of each vector (contact/default.hpp, first_step_lanes: W = 4;
-// contact/default.hpp, rational_lanes: W = 8), with which start.hpp's
+// contact/default.hpp, coefficient_step_lanes: W = 8), with which start.hpp's
 // start_quartics computes the quartics of DEFAULT's start (M22) for those
 // pairs. Every lane performs the scalar operations of the one-pair code in
 // the same order (the including files are compiled without contraction,

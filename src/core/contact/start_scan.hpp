@@ -1,6 +1,6 @@
 // DEFAULT's start on x86-64-v4 (docs/methods.md, eq. (M24)), in place of the
-// Newton iteration of (M22) on the rational step's path (default.hpp,
-// rational_v4). lambda* is the root of a1(x) = x^2 a2(x), x = lambda /
+// Newton iteration of (M22) on the coefficient step's path (default.hpp,
+// coefficient_step). lambda* is the root of a1(x) = x^2 a2(x), x = lambda /
 // (1 - lambda), with the quartics a_i of (M22) (start.hpp); in t = log x,
 // y(t) = (a1 - x^2 a2) / (a1 + x^2 a2) = tanh((log a1 - log a2) / 2 - t)
 // is positive below the root and negative above it. The root is located
@@ -10,8 +10,7 @@
 //  2. on 16 points (step h / 15) from coarse point k - 1 to coarse point k
 //     of that interval, the same way;
 //  3. by linear interpolation of y in t between the two points that bracket
-//     it (the error is second order in the step; on bench_contact's pairs,
-//     p99 6.9e-5 / 3.2e-4 / 4.0e-4 in t in classes 0-2, docs/methods.md).
+//     it (the error is second order in the step, docs/methods.md).
 // Each grid is evaluated in AVX-512 vectors, a1 - x^2 a2 and a1 + x^2 a2
 // as sextics (Estrin's scheme): no division, no branch per point, and a
 // dependency chain of two polynomial evaluations instead of one Newton
@@ -19,7 +18,7 @@
 // registers by permutes. A root outside the coarse grid returns -1
 // (the caller then runs (M22)). The quartics are used unscaled (the scaling
 // of (M22) protects its products of three a_i; here none is formed). Only
-// the start depends on this; the rational step that follows certifies its
+// the start depends on this; the coefficient step that follows certifies its
 // own result.
 #pragma once
 
@@ -37,7 +36,7 @@ PW85_V4_INLINE __m512d bc(double v) { return _mm512_set1_pd(v); }
 // The sextic sum_n c_n x^n, lane by lane (Estrin's scheme: four levels of
 // FMA after x): at eight points x for one pair (the c_n broadcast,
 // scan_start), or at one point x (broadcast) for one pair per lane
-// (contact/default.hpp, rational_lanes), the same IEEE operations in each lane.
+// (contact/default.hpp, coefficient_step_lanes), the same IEEE operations in each lane.
 PW85_V4_INLINE __m512d sextic(__m512d const c[7], __m512d x) {
   __m512d const x2 = _mm512_mul_pd(x, x), x4 = _mm512_mul_pd(x2, x2);
   __m512d const lo = _mm512_fmadd_pd(x2, _mm512_fmadd_pd(x, c[3], c[2]),

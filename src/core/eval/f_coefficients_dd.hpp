@@ -36,10 +36,10 @@ namespace pw85 {
 
 // Coefficients, in this order: a0, a1, a2, d0, d1, d2, d3, each times
 // scale, a power of two (f = s t A / B does not depend on it).
-struct RationalDD {
+struct CoefficientsDD {
   double c[8];
   double scale;
-  unsigned ok;  // bit j: coefficient j passed its test (rational_coefficients_dd)
+  unsigned ok;  // bit j: coefficient j passed its test (coefficients_dd)
 };
 
 #if PW85_ISA_LEVELS
@@ -108,8 +108,8 @@ PW85_V4_INLINE __m512d fold_abs(__m512d x, __m512d y, __m512i ia, __m512i ib) {
 // entries C_k = P_k Q_k - S_k T_k: pa, qa, sa, ta the factors P, Q, S, T from
 // Q1, pb ... tb from Q2, aw = w_k Q1_k, bw = w_k Q2_k, ri rj = w_k r_i r_j
 // (w_k = 1 on the diagonal, 2 off it). Lane by lane: in
-// rational_coefficients_dd lane k holds entry k of one pair; in
-// contact/default.hpp, rational_lanes the vectors of one entry k hold one pair per
+// coefficients_dd lane k holds entry k of one pair; in
+// contact/default.hpp, coefficient_step_lanes the vectors of one entry k hold one pair per
 // lane, and each lane performs the same IEEE operations, so the terms of a
 // pair are the same bits in both. v[j] = the term of coefficient j
 // (a0, a1, a2, 3 d0, d1, d2, 3 d3; products in double-double), m[j] = the
@@ -166,7 +166,7 @@ PW85_V4_INLINE AdjIndex adj_index() {
 constexpr double kThird = 1.0 / 3.0;
 
 // The bits of the coefficients other than d0 (bit 3) and d3 (bit 6).
-constexpr unsigned kRatNotDet = 0x37;
+constexpr unsigned kCoefficientsNotDet = 0x37;
 
 // A coefficient from its sum over the adjugate entries t (double-double)
 // and the sum mt of the absolute values of its terms: (t.h + t.l) times
@@ -199,8 +199,8 @@ constexpr int kDetTerms = 20;
 }  // namespace rdd
 
 // det Q for d0 = det Q1 or d3 = det Q2 (eq. (M13)) where the double-double
-// sum fails its bound (cancellation beyond 2^45 of the terms: in
-// bench_contact's class 3, 18 % of the pairs, by up to 2^75). By the
+// sum fails its bound (cancellation beyond 2^45 of the terms: nearly
+// singular matrices, build/tests/test-rational-dd --verbose). By the
 // cofactor expansion
 //   det Q = q00 q11 q22 - q00 q12^2 - q01^2 q22 + 2 q01 q02 q12 - q02^2 q11,
 // each product of three doubles written exactly as four doubles (two_prod
@@ -216,8 +216,8 @@ constexpr int kDetTerms = 20;
 // over the products (ten roundings; the other two parts of each product
 // are below u times these, so mp (1 + 2^-47) >= sum |terms|); det is then
 // within (2^-53 + 2^-56 + 2^-70) det < 1.13 u. T = double (one pair,
-// rational_coefficients_dd) or __m512d (one pair per lane,
-// contact/default.hpp, rational_lanes), the same IEEE operations in each lane.
+// coefficients_dd) or __m512d (one pair per lane,
+// contact/default.hpp, coefficient_step_lanes), the same IEEE operations in each lane.
 template <class T>
 PW85_V4_INLINE lanes::MaskOf<T> det_precise(T const q[6], T &det) noexcept {
   using rdd::fms;
@@ -249,16 +249,16 @@ PW85_V4_INLINE lanes::MaskOf<T> det_precise(T const q[6], T &det) noexcept {
 
 // Computes the seven coefficients, times out.scale, into out.c[0..6]
 // (out.c[7] = 0), and in out.ok the bits of those that pass their test
-// (rational_dets_precise below). Returns false when one is not positive or its bound
+// (coefficients_dets_precise below). Returns false when one is not positive or its bound
 // 32 u^2 (sum of |terms|) exceeds 2^-56 times it; otherwise each is within
 // 2.2 u of its exact value times out.scale (the double-double error, then
 // the rounding to double; d0 and d3, formed as tr(adj(Q) Q) / 3, one more
 // rounding). out.scale = 2^(-3E), T = tr Q1 + tr Q2 in [2^E, 2^(E+1)), so
-// that every d_j times the scale is below 8 (d_j <= T^3): f_eval_rational
+// that every d_j times the scale is below 8 (d_j <= T^3): f_eval_coefficients
 // forms B^5. T is positive and, for inputs within the range of contact.hpp
 // (kSafeLo, kSafeHi), 3E is well inside the exponent range.
-PW85_V4_INLINE bool rational_coefficients_dd(
-    Vec3 const &r, Sym3 const &q1, Sym3 const &q2, RationalDD &out) noexcept {
+PW85_V4_INLINE bool coefficients_dd(
+    Vec3 const &r, Sym3 const &q1, Sym3 const &q2, CoefficientsDD &out) noexcept {
   using namespace rdd;
   // The scale, from the inputs (off the dependency chain of the sums).
   double const tr = ((q1[0] + q1[3]) + q1[5]) + ((q2[0] + q2[3]) + q2[5]);
@@ -311,13 +311,13 @@ PW85_V4_INLINE bool rational_coefficients_dd(
   return out.ok == 0x7F;
 }
 
-// After rational_coefficients_dd declined (out.ok: the coefficients that
+// After coefficients_dd declined (out.ok: the coefficients that
 // passed): true when a0, a1, a2, d1, d2 passed and det_precise accepts d0
 // and d3 where they failed (out.c[3], out.c[6]: det Q1, det Q2 times
 // out.scale, within 1.13 u).
-PW85_V4_INLINE bool rational_dets_precise(Sym3 const &q1, Sym3 const &q2,
-                                          RationalDD &out) noexcept {
-  if ((out.ok & rdd::kRatNotDet) != rdd::kRatNotDet) return false;
+PW85_V4_INLINE bool coefficients_dets_precise(Sym3 const &q1, Sym3 const &q2,
+                                          CoefficientsDD &out) noexcept {
+  if ((out.ok & rdd::kCoefficientsNotDet) != rdd::kCoefficientsNotDet) return false;
   Sym3 const *const qs[2] = {&q1, &q2};
   for (int m = 0; m < 2; ++m) {
     int const j = m == 0 ? 3 : 6;
@@ -334,21 +334,21 @@ PW85_V4_INLINE bool rational_dets_precise(Sym3 const &q1, Sym3 const &q2,
 // f and its first four derivatives at lambda from the coefficients
 // (Bernstein form above; phi = A / B, f = s t phi, eq. (M12)), and a bound
 // edf on the error of the computed f' (first order in u). f itself is
-// within kRationalRel f of the exact value (positive terms only).
-// One pair (T = double, K = RationalDD: default.hpp) or one pair per lane
-// (T a vector type, K its coefficients: contact/default.hpp, rational_lanes), the same
+// within kCoefficientRel f of the exact value (positive terms only).
+// One pair (T = double, K = CoefficientsDD: default.hpp) or one pair per lane
+// (T a vector type, K its coefficients: contact/default.hpp, coefficient_step_lanes), the same
 // IEEE operations in each lane. Returns true (T = double) or the mask of the
 // lanes where the evaluation holds.
 template <class T>
-struct RatEvalT {
+struct CoefficientEvalOf {
   T lambda, phi, dphi;
   T f, df, d2f, d3f, d4f, edf;
 };
-typedef RatEvalT<double> RatEval;
+typedef CoefficientEvalOf<double> CoefficientEval;
 
 template <class T, class K>
-PW85_ALWAYS_INLINE lanes::MaskOf<T> f_eval_rational(T lambda, K const &k,
-                                                    RatEvalT<T> &e) noexcept {
+PW85_ALWAYS_INLINE lanes::MaskOf<T> f_eval_coefficients(T lambda, K const &k,
+                                                    CoefficientEvalOf<T> &e) noexcept {
   using lanes::vabs;
   using lanes::finite;
   T const a0 = k.c[0], a1 = k.c[1], a2 = k.c[2];
@@ -367,7 +367,7 @@ PW85_ALWAYS_INLINE lanes::MaskOf<T> f_eval_rational(T lambda, K const &k,
   // Eq. (M25): phi_k = d^k phi / d lambda^k = N_k / B^(k + 1), from sum_i C(k, i)
   // phi_i B_(k-i) = A_k: the numerators are products and sums only, so
   // they are formed while the division runs (B^5 stays in range: the
-  // coefficients are scaled, rational_coefficients_dd).
+  // coefficients are scaled, coefficients_dd).
   T const ib = 1.0 / B;
   T const ib2 = ib * ib, ib3 = ib2 * ib, ib4 = ib2 * ib2, ib5 = ib4 * ib;
   T const N1 = A1 * B - A * B1;
