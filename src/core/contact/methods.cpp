@@ -178,7 +178,7 @@ constexpr MethodFunction kMethods[] = {
     contact_brent_checked,  // kMethodBrent: brent.cpp
     contact_newton,         // kMethodNewton: newton.cpp
     contact_rational,       // kMethodRational: rational.cpp
-    contact_zheng_checked,  // kMethodZheng: dca/dca_3d.cpp
+    contact_zheng_checked,  // kMethodZheng: zheng.cpp
 };
 static_assert(sizeof kMethods / sizeof kMethods[0] == kMethodCount,
               "one row of kMethods per Method");
