@@ -8,6 +8,10 @@
 
 #include "common/isa.hpp"
 
+#if PW85_ISA_LEVELS
+#include <immintrin.h>
+#endif
+
 // Every function taking or returning a vector is always inline into the
 // instruction-set variants of its callers (no vector crosses a call), so
 // GCC's note that the ABI of a 32-byte vector argument depends on AVX does
@@ -179,6 +183,51 @@ PW85_ALWAYS_INLINE void gather(double const *const p[W], VecD<W> out[N]) noexcep
   for (; i < N; ++i)
     for (int l = 0; l < W; ++l) out[i][l] = p[l][i];
 }
+
+#if PW85_ISA_LEVELS
+// Eight lanes on x86-64-v4: the operations GCC's vector extensions do not
+// spell, for code inlined into PW85_TARGET_V4 functions (the only place of
+// the library's AVX-512 intrinsics besides derivatives/adjugate.hpp).
+typedef VecD<8> Lanes8;
+typedef long long LaneIndex8 __attribute__((vector_size(64)));
+typedef unsigned char LaneBits8;  // bit l: lane l
+
+// a b + c and a b - c, each with one rounding.
+PW85_V4_INLINE Lanes8 fma(Lanes8 a, Lanes8 b, Lanes8 c) noexcept {
+  return _mm512_fmadd_pd(a, b, c);
+}
+PW85_V4_INLINE Lanes8 fms(Lanes8 a, Lanes8 b, Lanes8 c) noexcept {
+  return _mm512_fmsub_pd(a, b, c);
+}
+// Lane l of the result: lane idx[l] of (a, b), 0-7 from a, 8-15 from b.
+PW85_V4_INLINE Lanes8 permute(Lanes8 a, LaneIndex8 idx, Lanes8 b) noexcept {
+  return _mm512_permutex2var_pd(a, reinterpret_cast<__m512i>(idx), b);
+}
+// The lanes of a mask as bits, and back.
+PW85_V4_INLINE LaneBits8 bits(UMaskOf<Lanes8> m) noexcept {
+  return _mm512_movepi64_mask(reinterpret_cast<__m512i>(m));
+}
+PW85_V4_INLINE LaneBits8 bits(MaskD<8> m) noexcept {
+  return _mm512_movepi64_mask(reinterpret_cast<__m512i>(m));
+}
+PW85_V4_INLINE MaskD<8> mask_of(LaneBits8 k) noexcept {
+  return reinterpret_cast<MaskD<8>>(_mm512_movm_epi64(k));
+}
+// k ? a : b lane by lane, k as bits.
+PW85_V4_INLINE Lanes8 blend(LaneBits8 k, Lanes8 a, Lanes8 b) noexcept {
+  return _mm512_mask_blend_pd(k, b, a);
+}
+PW85_V4_INLINE LaneIndex8 blend(LaneBits8 k, LaneIndex8 a, LaneIndex8 b) noexcept {
+  return reinterpret_cast<LaneIndex8>(
+      _mm512_mask_blend_epi64(k, reinterpret_cast<__m512i>(b), reinterpret_cast<__m512i>(a)));
+}
+// The first n doubles at p in lanes 0 .. n - 1, zeros above (reads n only).
+PW85_V4_INLINE Lanes8 load_first(double const *p, int n) noexcept {
+  return _mm512_maskz_loadu_pd(static_cast<__mmask8>((1u << n) - 1u), p);
+}
+PW85_V4_INLINE void store(double *p, Lanes8 v) noexcept { _mm512_storeu_pd(p, v); }
+PW85_V4_INLINE Lanes8 load(double const *p) noexcept { return _mm512_loadu_pd(p); }
+#endif
 
 // The same helpers for one pair (T = double), so that code templated on the
 // vector type (eval/f_rational_dd.hpp, contact/rational_step.hpp,

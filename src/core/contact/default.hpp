@@ -36,6 +36,7 @@
 #include <limits>
 
 #include <type_traits>
+#include <utility>
 
 #include "common/fp.hpp"
 #include "common/lanes.hpp"
@@ -423,6 +424,13 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
   return kNoConvergence;
 }
 
+// The vector of p[l][i] over the lanes l.
+template <std::size_t... kLane>
+PW85_ALWAYS_INLINE lanes::VecD<sizeof...(kLane)> column(double const *const p[], int i,
+                                                       std::index_sequence<kLane...>) noexcept {
+  return lanes::VecD<sizeof...(kLane)>{p[kLane][i]...};
+}
+
 // Step 1 of DEFAULT for kLanes pairs at once, pair l in lane l of each
 // vector (docs/batch.md, "Throughput"): the screen of the entry
 // (screen.hpp, screen_contact_lanes), then first_step with at most
@@ -442,12 +450,11 @@ PW85_ALWAYS_INLINE void first_step_lanes(double const *const rp[lanes::kLanes],
   typedef lanes::VecD<kWidth> Lane;
   lanes::Vec3L<kWidth> r;
   lanes::SymL<kWidth> q1, q2;
-  for (int l = 0; l < kWidth; ++l) {
-    for (int i = 0; i < kDim; ++i) r[i][l] = rp[l][i];
-    for (int i = 0; i < kSym; ++i) {
-      q1[i][l] = q1p[l][i];
-      q2[i][l] = q2p[l][i];
-    }
+  auto const lane_index = std::make_index_sequence<kWidth>();
+  for (int i = 0; i < kDim; ++i) r[i] = column(rp, i, lane_index);
+  for (int i = 0; i < kSym; ++i) {
+    q1[i] = column(q1p, i, lane_index);
+    q2[i] = column(q2p, i, lane_index);
   }
   lanes::MaskD<kWidth> const active = screen_contact_lanes<Lane>(r, q1, q2, kSafeLo, kSafeHi);
   lanes::MaskD<kWidth> iterations{};
