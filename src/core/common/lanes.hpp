@@ -203,6 +203,13 @@ PW85_V4_INLINE Lanes8 fms(Lanes8 a, Lanes8 b, Lanes8 c) noexcept {
 PW85_V4_INLINE Lanes8 permute(Lanes8 a, LaneIndex8 idx, Lanes8 b) noexcept {
   return _mm512_permutex2var_pd(a, reinterpret_cast<__m512i>(idx), b);
 }
+// Comparisons as bits (one compare into a mask register).
+PW85_V4_INLINE LaneBits8 gt_bits(Lanes8 a, Lanes8 b) noexcept {
+  return _mm512_cmp_pd_mask(a, b, _CMP_GT_OQ);
+}
+PW85_V4_INLINE LaneBits8 le_bits(Lanes8 a, Lanes8 b) noexcept {
+  return _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ);
+}
 // The lanes of a mask as bits, and back.
 PW85_V4_INLINE LaneBits8 bits(UMaskOf<Lanes8> m) noexcept {
   return _mm512_movepi64_mask(reinterpret_cast<__m512i>(m));
@@ -227,6 +234,11 @@ PW85_V4_INLINE Lanes8 load_first(double const *p, int n) noexcept {
 }
 PW85_V4_INLINE void store(double *p, Lanes8 v) noexcept { _mm512_storeu_pd(p, v); }
 PW85_V4_INLINE Lanes8 load(double const *p) noexcept { return _mm512_loadu_pd(p); }
+PW85_V4_INLINE Lanes8 broadcast(double x) noexcept { return _mm512_set1_pd(x); }
+PW85_V4_INLINE LaneIndex8 broadcast_index(long long i) noexcept {
+  return reinterpret_cast<LaneIndex8>(_mm512_set1_epi64(i));
+}
+PW85_V4_INLINE double lane0(Lanes8 v) noexcept { return _mm512_cvtsd_f64(v); }
 #endif
 
 // The same helpers for one pair (T = double), so that code templated on the

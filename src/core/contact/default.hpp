@@ -529,19 +529,15 @@ namespace lanes8 {
 
 using namespace lanes;
 constexpr int W = kDefaultLanes;
-static_assert(W == 8, "one pair per lane of an __m512d");
+static_assert(W == 8, "one pair per lane of lanes::Lanes8");
 typedef VecD<W> V8;
 typedef MaskD<W> M8;
 
 PW85_V4_INLINE V8 bc(double x) noexcept { return V8{} + x; }
 
-PW85_V4_INLINE M8 from_bits(__mmask8 k) noexcept {
-  return reinterpret_cast<M8>(_mm512_movm_epi64(k));
-}
+PW85_V4_INLINE M8 from_bits(LaneBits8 k) noexcept { return mask_of(k); }
 
-PW85_V4_INLINE __mmask8 to_bits(M8 m) noexcept {
-  return _mm512_movepi64_mask(reinterpret_cast<__m512i>(m));
-}
+PW85_V4_INLINE LaneBits8 to_bits(M8 m) noexcept { return bits(m); }
 
 // The coefficients of coefficients_dd (f_coefficients_dd.hpp), one
 // pair per lane.
@@ -560,7 +556,7 @@ constexpr double kW[kSym] = {1.0, 2.0, 2.0, 1.0, 2.0, 1.0};
 // The terms (rdd::terms) of adjugate entries k and k + 1, added: round 1 of
 // the tree.
 PW85_V4_INLINE void pair_sum(Vec3L<W> const &r, SymL<W> const &a, SymL<W> const &b, int k,
-                             rdd::DD v[7], __m512d m[7]) noexcept {
+                             rdd::DD v[7], V8 m[7]) noexcept {
   using namespace rdd;
   Terms t[2];
   for (int i = 0; i < 2; ++i) {
@@ -588,7 +584,7 @@ PW85_V4_INLINE M8 coefficients(Vec3L<W> const &r, SymL<W> const &a, SymL<W> cons
   using namespace rdd;
   // Rounds 2 and 3, entry pair by entry pair.
   DD s0123[7], v[7];
-  __m512d m0123[7], m[7];
+  V8 m0123[7], m[7];
   pair_sum(r, a, b, 0, s0123, m0123);
   pair_sum(r, a, b, 2, v, m);
   for (int j = 0; j < 7; ++j) {
@@ -601,10 +597,10 @@ PW85_V4_INLINE M8 coefficients(Vec3L<W> const &r, SymL<W> const &a, SymL<W> cons
   M8 const bits = reinterpret_cast<M8>(tr);
   M8 const e = ((bits >> 52) & 0x7FF) - 1023;
   V8 const scale = reinterpret_cast<V8>((1023 - 3 * e) << 52);
-  __mmask8 ok = 0xFF, okd[2] = {0xFF, 0xFF};
+  LaneBits8 ok = 0xFF, okd[2] = {0xFF, 0xFF};
   for (int j = 0; j < 7; ++j) {
     double const third = j == 3 || j == 6 ? kThird : 1.0;
-    __mmask8 okj;
+    LaneBits8 okj;
     out.c[j] = finish(add(s0123[j], v[j]), m0123[j] + m[j], bc(third) * scale, okj);
     if (j == 3 || j == 6)
       okd[j == 6] = okj;
@@ -616,11 +612,11 @@ PW85_V4_INLINE M8 coefficients(Vec3L<W> const &r, SymL<W> const &a, SymL<W> cons
   SymL<W> const *const qs[2] = {&a, &b};
   for (int mat = 0; mat < 2; ++mat) {
     if (okd[mat] != 0xFF) {
-      __m512d q[kSym], det;
+      V8 q[kSym], det;
       for (int i = 0; i < kSym; ++i) q[i] = (*qs[mat])[i];
-      __mmask8 const take = static_cast<__mmask8>(~okd[mat]) & to_bits(det_precise(q, det));
+      LaneBits8 const take = static_cast<LaneBits8>(~okd[mat]) & to_bits(det_precise(q, det));
       int const j = mat == 0 ? 3 : 6;
-      out.c[j] = _mm512_mask_blend_pd(take, out.c[j], det * scale);
+      out.c[j] = blend(take, det * scale, out.c[j]);
       okd[mat] |= take;
     }
     ok &= okd[mat];
@@ -641,8 +637,8 @@ PW85_V4_INLINE V8 grid_start(Vec3L<W> const &r, SymL<W> const &q1, SymL<W> const
   // Coarse grid: k = the first point where a1 - x^2 a2 is not positive;
   // xa = point k - 1 (k = 0, or none: off the grid). Lanes outside want
   // count as found from the start (their values are not used).
-  __mmask8 const wanted = to_bits(want);
-  __mmask8 found = static_cast<__mmask8>(~wanted), first = 0;
+  LaneBits8 const wanted = to_bits(want);
+  LaneBits8 found = static_cast<LaneBits8>(~wanted), first = 0;
   V8 xa{};
   // The points in groups of kCoarseGroup, evaluated before their masks
   // are taken in order (a lane found at a point ignores the later ones, so
@@ -658,15 +654,15 @@ PW85_V4_INLINE V8 grid_start(Vec3L<W> const &r, SymL<W> const &q1, SymL<W> const
       pos[u] = scan::positive_mask(scan::sextic(pn, bc(kScanCoarse[i0 + u])));
     for (int u = 0; u < kCoarseGroup; ++u) {
       int const i = i0 + u;
-      __mmask8 const nonpos = static_cast<__mmask8>(~pos[u] & ~found);
+      LaneBits8 const nonpos = static_cast<LaneBits8>(~pos[u] & ~found);
       if (i == 0)
         first = nonpos;
       else
-        xa = _mm512_mask_blend_pd(nonpos, xa, bc(kScanCoarse[i - 1]));
+        xa = blend(nonpos, bc(kScanCoarse[i - 1]), xa);
       found |= nonpos;
     }
   }
-  __mmask8 const on_grid = found & wanted & static_cast<__mmask8>(~first);
+  LaneBits8 const on_grid = found & wanted & static_cast<LaneBits8>(~first);
   // Fine grid: x_j = xa exp(j h / 15); the first non-positive j, clamped
   // to 1..15 (none: 15), per lane in jv. Point j = 0 is not evaluated: x_0
   // = xa * 1 is the coarse point k - 1, whose value, the same operations
@@ -675,17 +671,17 @@ PW85_V4_INLINE V8 grid_start(Vec3L<W> const &r, SymL<W> const &q1, SymL<W> const
   // faster than carrying n1, n2, x1, x2 through the loop by four blends per
   // point (build/bench/bench_batch --n 100000 --reps 5, runs alternating
   // the builds).
-  __m512i jv = _mm512_set1_epi64(15);
-  found = static_cast<__mmask8>(~on_grid);
+  LaneIndex8 jv = LaneIndex8{} + 15;
+  found = static_cast<LaneBits8>(~on_grid);
   for (int j = 1; j < 15 && found != 0xFF; ++j) {
-    __mmask8 const nonpos = static_cast<__mmask8>(
+    LaneBits8 const nonpos = static_cast<LaneBits8>(
         ~scan::positive_mask(scan::sextic(pn, xa * bc(kScanFine[j]))) & ~found);
     found |= nonpos;
-    jv = _mm512_mask_blend_epi64(nonpos, jv, _mm512_set1_epi64(j));
+    jv = blend(nonpos, LaneIndex8{} + j, jv);
   }
-  __m512d const f0 = _mm512_load_pd(kScanFine), f1 = _mm512_load_pd(kScanFine + 8);
-  V8 const x1v = xa * V8(_mm512_permutex2var_pd(f0, jv - _mm512_set1_epi64(1), f1));
-  V8 const x2v = xa * V8(_mm512_permutex2var_pd(f0, jv, f1));
+  V8 const f0 = load(kScanFine), f1 = load(kScanFine + 8);
+  V8 const x1v = xa * permute(f0, jv - 1, f1);
+  V8 const x2v = xa * permute(f0, jv, f1);
   V8 const n1 = scan::sextic(pn, x1v), n2 = scan::sextic(pn, x2v);
   V8 const e1 = scan::sextic(pdn, x1v), e2 = scan::sextic(pdn, x2v);
   V8 const lam = scan_interpolate(n1, e1, n2, e2, x1v);

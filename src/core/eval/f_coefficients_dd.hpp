@@ -173,7 +173,7 @@ constexpr unsigned kCoefficientsNotDet = 0x37;
 PW85_V4_INLINE Lanes8 finish(DD t, Lanes8 mt, Lanes8 ts, lanes::LaneBits8 &ok) {
   Lanes8 const sum = t.h + t.l;
   Lanes8 const bound = mt * (32.0 * 0x1p-106 * 0x1p56);
-  ok = lanes::bits(lanes::le(bound, sum) & lanes::gt(sum, 0.0));
+  ok = lanes::le_bits(bound, sum) & lanes::gt_bits(sum, Lanes8{});
   return sum * ts;
 }
 
