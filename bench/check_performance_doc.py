@@ -144,6 +144,13 @@ def derivatives(docs):
                   "`pw85_contact_function_pairs`", "`pw85_contact_derivatives_pairs`", "ratio"], out)
 
 
+def derivatives_callgrind(docs):
+    rows = rows_of(os.path.join(docs, "bench_derivatives_callgrind.csv"))
+    out = [[CLASSES[int(r["class"])], r["default_per_pair"], r["derivatives_per_pair"], r["ratio"]]
+           for r in rows]
+    return table(["class", "DEFAULT", "`pw85_contact_derivatives`", "ratio"], out)
+
+
 def _batch_sections(docs):
     return read_sections(os.path.join(docs, "bench_batch.csv"))
 
@@ -177,11 +184,14 @@ def batch_classes(docs):
 def contact_time(docs):
     rows = rows_of(os.path.join(docs, "bench_contact_time.csv"))
     out = []
-    for r in rows:
-        out.append([CLASSES[int(r["class"])], r["kind"], r["n"], f"{r['median_eval']} ({r['max_eval']})",
-                    r["ns_median"], r["ns_default"], r["ns_per_eval_over_default"]])
-    return table(["class", "trajectories", "n", "evaluations, median (max)", "ns per call",
-                  "DEFAULT ns", "per evaluation ÷ DEFAULT"], out)
+    for c in range(4):
+        by = [r for r in rows if int(r["class"]) == c]
+        out.append([CLASSES[c], " / ".join(f"{r['median_eval']} ({r['max_eval']})" for r in by),
+                    " / ".join(r["ns_median"] for r in by), by[0]["ns_default"],
+                    " / ".join(r["ns_per_eval_over_default"] for r in by)])
+    kinds = " / ".join(r["kind"] for r in rows if int(r["class"]) == 0)
+    return table(["class", f"evaluations, median (max): {kinds}", "ns per call", "DEFAULT ns",
+                  "per evaluation ÷ DEFAULT"], out)
 
 
 def scene(docs):
@@ -227,7 +237,8 @@ def lammps(docs):
                   "ratio"], out)
 
 
-GENERATORS = {f.__name__: f for f in (contact_methods, overlap, dca, derivatives, batch, batch_classes,
+GENERATORS = {f.__name__: f for f in (contact_methods, overlap, dca, derivatives,
+                                      derivatives_callgrind, batch, batch_classes,
                                       contact_time, scene, scene_shell, lammps)}
 
 BLOCK = re.compile(r"(<!-- generated: (\w+) -->\n)(.*?)(<!-- end generated -->)", re.S)
