@@ -49,9 +49,11 @@ constexpr int kRefineMaxIter = 400;
 // where the first-order bound of the input perturbation (T9) stays below
 // this relative size; elsewhere the enclosure decides.
 constexpr double kFirstOrderTrust = 1e-8;
-// Width of the enclosure beyond which a step or a decision cannot be
-// certified at the level kLevel (half of 1 - kLevel^2).
-constexpr double kEnclosureMaxWidth = 1.1e-13;
+// Largest semi-axis ratio (bounds of axes.hpp) of either ellipsoid: the
+// enclosure's relative floor 64 u^2 (k1 + k2), k_i the squared ratios, is
+// then below 6.3e-16, its width at mu^2 ~ 1 (8 times the floor) below
+// 5e-15, a 45th of the band 1 - kLevel^2 = 2.27e-13 it must resolve.
+constexpr double kMaxAxisRatio = 1e7;
 
 // Constants of (T3), (T4), (T3') for the pair.
 RateBounds rate_bounds(AxisBounds const &a1, Vec3 const &w1, double cn1, AxisBounds const &a2,
@@ -118,13 +120,20 @@ struct Sample {
   double t, f, lo, hi, df, mu_lo;
   bool ok;         // m holds a minorant with g(0) > 0
   bool enclosed;   // [lo, hi] from the enclosure
-  bool unresolved; // the enclosure failed or is wider than kEnclosureMaxWidth
   Minorant m;
 };
 
 bool minorant_at(Motion const &mo, ExactPose const *pose, double t, Vec3 const &s, Minorant &m) noexcept {
   if (pose == nullptr) return minorant(mo.r0, mo.v, t, mo.a1, mo.w1, mo.a2, mo.w2, s, kLevel, m);
   return minorant_rotating(*pose, mo.v, mo.a1, mo.w1, mo.a2, mo.w2, mo.ax1, mo.ax2, s, kLevel, m);
+}
+
+// Whether r0 + t v is a double in every component (no rounding by
+// position()).
+bool r_is_exact(Vec3 const &r0, Vec3 const &v, double t) noexcept {
+  for (int i = 0; i < kDim; ++i)
+    if (dd::add(dd::two_prod<false>(t, v[i]), r0[i]).lo != 0.0) return false;
+  return true;
 }
 
 // Returns false when DEFAULT fails; counts its evaluations (the enclosure
@@ -142,14 +151,17 @@ bool sample(Motion const &mo, double t, bool decide, Sample &p, int &evaluations
   double const mu2 = mr.mu2, lam = mr.lambda;
   p.t = t;
   p.f = mu2 - 1.0;
-  p.enclosed = p.unresolved = false;
+  p.enclosed = false;
   Vec3 dir;
   bool const have_dir = direction(r, p1, p2, lam, dir);
   // (T9) first-order effect of the rounding of DEFAULT's inputs: r(t) to u
   // per component, Q_i(t) by 16 u ||Q_i||_F (products) and by the angle
   // t |w_i| rounded (3 u t ||[W_i, Q_i]||); doubled.
-  double e_in = inf;
-  if (have_dir) {
+  // At t = 0, and without rotation where r(t) is a double, DEFAULT's inputs
+  // are exact: no such term.
+  bool const exact_inputs = t == 0.0 || (!mo.rotating && r_is_exact(mo.r0, mo.v, t));
+  double e_in = exact_inputs ? 0.0 : inf;
+  if (!exact_inputs && have_dir) {
     double const sn = std::sqrt(dot(dir, dir));  // inf or NaN: e_in not trusted
     double const dq1 = mo.rotating ? 16 * kU * mo.qf1 + 3 * kU * t * mo.cn1 : 0.0;
     double const dq2 = mo.rotating ? 16 * kU * mo.qf2 + 3 * kU * t * mo.cn2 : 0.0;
@@ -201,13 +213,11 @@ bool sample(Motion const &mo, double t, bool decide, Sample &p, int &evaluations
     }
     ++evaluations;
     Mu2Bounds b;
-    p.unresolved = true;
     if (enclose_mu2(pose, mo.a1, mo.a2, p1, p2, mo.ax1, mo.ax2, lam, b)) {
       p.lo = b.lo;
       p.hi = b.hi;
       p.f = 0.5 * (b.lo + b.hi);
       p.enclosed = true;
-      p.unresolved = !(b.hi - b.lo <= kEnclosureMaxWidth);
       Minorant m2;
       if (minorant_at(mo, pp, t, b.s, m2) && (!p.ok || m2.gap > p.m.gap)) {
         p.m = m2;
@@ -215,8 +225,28 @@ bool sample(Motion const &mo, double t, bool decide, Sample &p, int &evaluations
       }
     }
   }
+  if (!(p.ok && p.m.gap > 0.0) && !(p.hi <= 0.0)) {
+    // Neither direction gives a step (Q(lambda) too ill-conditioned for
+    // the Cholesky solves at DEFAULT's lambda): the direction of the
+    // derivatives, whose lambda is refined by Newton steps in double-double
+    // (E7); any direction gives a valid minorant.
+    if (pp == nullptr && mo.rotating) {
+      pose = exact_pose(mo.r0, mo.v, t, mo.w1, mo.w2);
+      pp = &pose;
+    }
+    Derivatives d;
+    ++evaluations;
+    Minorant m3;
+    if (contact_derivatives(r, p1, p2, d) != kNoConvergence &&
+        minorant_at(mo, pp, t, Vec3{{d.d_r12[0], d.d_r12[1], d.d_r12[2]}}, m3) &&
+        (!p.ok || m3.gap > p.m.gap)) {
+      p.m = m3;
+      p.ok = true;
+    }
+  }
   p.df = std::numeric_limits<double>::quiet_NaN();
-  p.mu_lo = p.enclosed && p.lo > -1.0 ? std::sqrt(1.0 + p.lo) : 0.0;
+  // mu_lo from the bounds (DEFAULT's or the enclosure's), else 0
+  p.mu_lo = p.lo > -1.0 ? std::sqrt(1.0 + p.lo) : 0.0;
   if (p.ok) {
     double const mu = std::sqrt(std::fmax(1.0 + p.f, 0.0)), d0 = p.m.h[0] + p.m.h[1];
     p.df = 2.0 * mu * (p.m.n1 - mu * p.m.d1) / d0;
@@ -273,6 +303,10 @@ bool refine(Motion const &mo, double tol, Sample a, Sample b, double &t,
         last_step = inf;  // Newton from the probe is taken
         c = step >= 0.0 ? newton + tol / 3.0 : newton - tol / 3.0;
         if (!(c > a.t && c < b.t)) c = step >= 0.0 ? 0.5 * (newton + b.t) : 0.5 * (a.t + newton);
+        // the root within an ulp of the end (a crossing steeper than the
+        // resolution of t): the probe tol / 3 on the near side instead
+        if (!(c > a.t && c < b.t)) c = step >= 0.0 ? newton - tol / 3.0 : newton + tol / 3.0;
+        if (!(c > a.t && c < b.t)) c = a.t + 0.5 * (b.t - a.t);
       } else {  // short of the root by tol / 3: a sample DEFAULT can place
         decide = false;
         c = step >= 0.0 ? newton - tol / 3.0 : newton + tol / 3.0;
@@ -327,11 +361,16 @@ Status contact_time(Vec3 const &r12, Vec3 const &v12, Sym3 const &q1, Vec3 const
   if (!std::isfinite(norm(mo.r0) + t_max * vn) || !std::isfinite(t_max * (norm(w1) + norm(w2))))
     return kInvalidArgument;
   mo.rotating = norm(w1) > 0.0 || norm(w2) > 0.0;
-  // Angles beyond 2^50 rad: the reduction modulo pi of spin.hpp would lose
-  // its accuracy; not certified.
-  if (!(t_max * std::fmax(norm(w1), norm(w2)) <= 0x1p50)) return kInaccurate;
   mo.ax1 = axis_bounds(mo.a1);
   mo.ax2 = axis_bounds(mo.a2);
+  // The domain of the certificate, decided before any evaluation from the
+  // inputs alone, so the same on every CPU: semi-axis ratios up to
+  // kMaxAxisRatio (the enclosure's floor below the band), angles up to
+  // 2^50 rad (the reduction modulo pi of spin.hpp).
+  if (!(mo.ax1.a_max <= kMaxAxisRatio * mo.ax1.a_min) ||
+      !(mo.ax2.a_max <= kMaxAxisRatio * mo.ax2.a_min) ||
+      !(t_max * std::fmax(norm(w1), norm(w2)) <= 0x1p50))
+    return kInaccurate;
   mo.cn1 = commutator_norm(mo.a1, w1);
   mo.cn2 = commutator_norm(mo.a2, w2);
   mo.qf1 = mo.qf2 = 0.0;
@@ -354,15 +393,14 @@ Status contact_time(Vec3 const &r12, Vec3 const &v12, Sym3 const &q1, Vec3 const
       res.t = t;
       return kNoConvergence;
     }
-    if (t == 0.0 && !(p.lo > 0.0)) {  // overlapping or touching at t = 0
-      if (p.unresolved) {
-        res.t = 0.0;
-        return kInaccurate;
-      }
+    // Overlapping or touching at t = 0 (static inputs, exact): certified
+    // when the bounds decide, else DEFAULT's value decides (|mu^2(0) - 1|
+    // then within its error bound).
+    if (t == 0.0 && (p.hi <= 0.0 || (!(p.lo > 0.0) && !(p.f > 0.0)))) {
       res.t = 0.0;
       return kOk;
     }
-    if (p.lo > 0.0) above = p;
+    if (p.lo > 0.0 || t == 0.0) above = p;
     if (p.hi <= 0.0) {  // contact confirmed (T6)
       if (!refine(mo, kRefineTol * t_max, above, p, res.t, res.evaluations)) {
         res.t = t;  // [0, t_k] is certified
@@ -373,7 +411,7 @@ Status contact_time(Vec3 const &r12, Vec3 const &v12, Sym3 const &q1, Vec3 const
     double const tau = p.ok ? safe_step(p.m, b) : lipschitz_step(p.mu_lo, kLevel, vn, b.om, rho);
     if (!(tau > 0.0)) {  // NaN or 0: no bound
       res.t = t;
-      return p.unresolved ? kInaccurate : kNoConvergence;
+      return kNoConvergence;
     }
     if (tau > t_max - t) {
       res.t = inf;
