@@ -801,11 +801,12 @@ PW85_API int pw85_scene_contact_derivatives(long long n, double const *centres,
  * PW85_ERR_NOT_SPD (q1 or q2 not positive definite; *t is NaN),
  * PW85_ERR_NO_CONVERGENCE (PW85_CONTACT_TIME_MAX_EVAL evaluations spent, an
  * evaluation failed, or no certified step can advance t; pairs at |r12| >=
- * 2^997 times the largest semi-axis: NO_CONVERGENCE with *t = 0) or
- * PW85_ERR_INACCURATE (a decision the double-double enclosure of mu^2
- * cannot make: a semi-axis ratio above ~1e7 in one ellipsoid, or
- * t_max |w_i| > 2^50); on the last two, *t is the time up to which
- * mu^2 >= 1 - 2.3e-13 is certified on [0, *t]. Limit of the certificate:
+ * 2^997 times the largest semi-axis: NO_CONVERGENCE with *t = 0; *t is
+ * the time up to which mu^2 >= 1 - 2.3e-13 is certified on [0, *t]) or
+ * PW85_ERR_INACCURATE (outside the certified domain, decided from the
+ * inputs alone before any evaluation, the same on every CPU: a bound of
+ * the semi-axis ratio above 1e7 in either ellipsoid, rotating or not, or
+ * t_max |w_i| > 2^50; *t = 0). Limit of the certificate:
  * a contact shorter than the spacing of doubles around t_c (ulp(t_c)) can
  * be stepped over, giving +INFINITY with PW85_OK (unit spheres head-on at
  * unit speed from |r12| ~ 2^57; docs/contact_time.md, "Limits"). */

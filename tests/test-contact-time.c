@@ -245,6 +245,51 @@ static void test_steep_crossing(void) {
   g_assert_cmpint(ct_verdict(&tr, &ref, t), ==, 0);
   g_assert_true(ref.t[0] != INFINITY);
   g_assert_cmpint(ev, <, 1000);
+  /* A spinning class-3 pair (trajectory 1095 of class 3 in the slow mode
+   * of /pw85_contact_time/reference) whose crossing falls within one ulp
+   * of t: the refinement's probe across Newton's root would leave the
+   * bracket; it is placed on the near side and closes it (T8). */
+  ct_traj const tr2 = {{-0x1.472f5e5798ea2p+8, 0x1.5c1e25048fd69p+10, -0x1.ff6208fd7c24p+7},
+                       {0x1.e8753512d88bcp+9, -0x1.e314ee1709f53p+11, 0x1.98730919b1efcp+9},
+                       {0x1.63a030dfa4a49p+17, -0x1.74fb6f1e02b0ep+16, 0x1.1987b7fc1b61cp+18,
+                        0x1.872f8b1874c27p+15, -0x1.2745303b37c67p+17, 0x1.bdbec7ed0501fp+18},
+                       {-0x1.4ea69f55d53e7p-2, 0x1.48462e778a351p+0, -0x1.793e101fb46dap-1},
+                       {0x1.f33144c78550bp+8, 0x1.765806332e1dp+10, -0x1.4e7f7e0b78f31p+13,
+                        0x1.18b877c47693ep+12, -0x1.f5ae062f993c2p+14, 0x1.c047a5987a318p+17},
+                       {-0x1.7cf0ff7547645p-1, -0x1.1bb23fcf3ec0cp+0, 0x1.f144b01fe7a26p+0},
+                       1.0};
+  g_assert_cmpint(pw85_contact_time_ex(tr2.r0, tr2.v, tr2.q1, tr2.w1, tr2.q2, tr2.w2, tr2.t_max, &t, &ev), ==, PW85_OK);
+  ct_reference(&tr2, &ref);
+  g_assert_true(ref.t[1] != INFINITY);
+  g_assert_cmpint(ct_verdict(&tr2, &ref, t), ==, 0);
+  g_assert_cmpfloat(fabs(t - ref.t[1]), <=, 1e-10);
+}
+
+/* The domain of the certificate is decided from the inputs before any
+ * evaluation: a semi-axis ratio above 1e7 (here 1e8, translation only and
+ * with a spinning sphere) gives PW85_ERR_INACCURATE with *t = 0 and no
+ * evaluation; at 1e6 the same approach is answered: the rod (semi-axes 1,
+ * 1e-6, 1e-6 along x, y, z) meets the unit sphere tip-on at t = 3. */
+static void test_domain(void) {
+  double const z[3] = {0, 0, 0}, w[3] = {0, 0, 1}, ball[6] = {1, 0, 0, 1, 0, 1};
+  double const r[3] = {5, 0, 0}, v[3] = {-1, 0, 0};
+  for (int k = 0; k < 2; k++) {
+    double const thin = k == 0 ? 1e-8 : 1e-6;
+    double const rod[6] = {1, 0, 0, thin * thin, 0, thin * thin};
+    for (int spin = 0; spin < 2; spin++) {
+      double t = -1;
+      int ev = -1;
+      int const st = pw85_contact_time_ex(r, v, rod, z, ball, spin ? w : z, 10.0, &t, &ev);
+      if (k == 0) {
+        g_assert_cmpint(st, ==, PW85_ERR_INACCURATE);
+        g_assert_cmpfloat(t, ==, 0.0);
+        g_assert_cmpint(ev, ==, 0);
+      } else {
+        g_assert_cmpint(st, ==, PW85_OK);
+        g_assert_cmpfloat(fabs(t - 3.0), <=, 1e-12);
+      }
+    }
+  }
 }
 
 /* The rate of the event-driven recipe (docs/contact_time.md): dmu^2/dt =
@@ -597,6 +642,7 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact_time/spinning-pair", test_spinning_pair);
   g_test_add_func("/pw85_contact_time/special", test_special);
   g_test_add_func("/pw85_contact_time/steep-crossing", test_steep_crossing);
+  g_test_add_func("/pw85_contact_time/domain", test_domain);
   g_test_add_func("/pw85_contact_time/rate", test_rate);
   g_test_add_func("/pw85_contact_time/reference", test_reference);
   g_test_add_func("/pw85_contact_time/grazing-band", test_grazing_band);

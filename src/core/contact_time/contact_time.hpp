@@ -15,7 +15,7 @@ constexpr int kContactTimeMaxEval = 100000;
 
 struct ContactTimeResult {
   double t;         // first contact time, +inf when none in [0, t_max]; on
-                    // kNoConvergence and kInaccurate, the time up to which mu^2 >= kLevel^2
+                    // kNoConvergence, the time up to which mu^2 >= kLevel^2
                     // (1 - 2.27e-13, contact_time.cpp) is certified on [0, t]
   int evaluations;  // contact-function evaluations
 };
@@ -23,9 +23,10 @@ struct ContactTimeResult {
 // Preconditions (checked by the C layer): every value finite, q1 and q2
 // positive definite, t_max finite and > 0. Returns kOk, kNoConvergence
 // (budget exhausted, an evaluation failed or no certified step; res.t as
-// above), kInaccurate (a decision the enclosure cannot make: cond(Q_i) above
-// ~1e14, or t_max |w_i| > 2^50; res.t as above) or kInvalidArgument (the
-// motion leaves the range of double).
+// above), kInaccurate (decided from the inputs before any evaluation: a
+// semi-axis ratio bound above 1e7 in either ellipsoid, or t_max |w_i| >
+// 2^50; res.t = 0) or kInvalidArgument (the motion leaves the range of
+// double).
 Status contact_time(Vec3 const &r12, Vec3 const &v12, Sym3 const &q1, Vec3 const &w1,
                     Sym3 const &q2, Vec3 const &w2, double t_max,
                     ContactTimeResult &res) noexcept;
