@@ -526,11 +526,12 @@ static void test_limits(void) {
 
 /* Rotating trajectories against the mpmath references (the guarantees of
  * include/pw85.h, tol = 1e-10 t_max, the width of the certified bracket):
- * PW85_OK; no contact where the exact minimum of mu^2 is above 1 (false); never after the first time with
- * mu^2 < 1 - 2.3e-13 (late; +INFINITY there counts as late); never before
- * the first crossing of 1 by more than tol (early); where mu^2 goes below
- * 1 - 2.3e-13, within tol of a crossing of 1: the first one, or the one
- * that starts the dip below 1 - 2.3e-13 (error). */
+ * PW85_OK; no contact where the exact minimum of mu^2 is above 1 (false);
+ * never after the first time with mu^2 < 1 - 2.3e-13 (late; +INFINITY
+ * there counts as late); never before the first crossing of 1 by more than
+ * tol (early); where mu^2 goes below 1 - 2.3e-13, within tol of a crossing
+ * of 1: the first one, or the one that starts the dip below 1 - 2.3e-13
+ * (error). */
 static void test_rotating_reference(void) {
   int n[4] = {0}, failed[4] = {0}, falsec[4] = {0}, late[4] = {0}, early[4] = {0},
       inexact[4] = {0}, contacts[4] = {0}, grazes[4] = {0}, issue = 0;
