@@ -1,4 +1,4 @@
-/* The overlap lanes of both widths (src/core/overlap/overlap_lanes.cpp;
+/* The overlap lanes of both widths (src/core/overlap/overlap_variants.cpp;
  * docs/batch.md, "Throughput"), called directly: the batch calls of the
  * public API take only the width overlap_lanes_width() picks, so without
  * this program overlap_lanes<4> would never run on an AVX-512 machine, nor

@@ -58,7 +58,7 @@ bool overlap_screened(double const *r, double const *q1, double const *q2, int &
 
 // The screen and the first certificates of the filters ((O11), (O13),
 // (O18) at tau0 and tau1) for W pairs at once, pair l = (r[l], q1[l],
-// q2[l]) in lane l (overlap_lanes.cpp): verdict[l] = 1 or 0, exact and
+// q2[l]) in lane l (overlap/filters.hpp): verdict[l] = 1 or 0, exact and
 // equal to pw85_overlap's, or -1 when the lane is not decided there (the
 // caller then calls pw85_overlap). Reads 3 and 6 doubles at each pointer;
 // any values (NaN included) are accepted. W is kOverlapLanes or
