@@ -157,15 +157,23 @@ PW85_ALWAYS_INLINE Lane quad_form(Lane const q[kSym], Lane const n[kDim]) noexce
 }
 
 // What the first certificates decided, lane by lane: one (overlap), zero
-// (separation; plane: by the plane (O11)), neither (open), and the weights
+// (separation; plane: by the plane (O11)), open (neither; the lanes not
+// screened included), and the weights
 // of the subdivision points tau0 = h1 / (h1 + h2) and tau1 = g1 / (g1 + g2)
 // (g = h when tau1 was not tried), where the one-pair filters start their
 // next stage.
 template <class Lane>
 struct FirstDecision {
-  Mask<Lane> one, zero, plane;
+  Mask<Lane> one, zero, plane, open;
   Lane h1, h2, g1, g2;
 };
+
+// Whether the plane (O11) decided every lane still open: for one pair, the
+// branch that skips the rest; for W pairs never taken (the plane seldom
+// decides every lane of a block, and the test would cost every block).
+PW85_ALWAYS_INLINE bool plane_settles_all(bool open) noexcept { return !open; }
+template <class LaneMask>
+PW85_ALWAYS_INLINE bool plane_settles_all(LaneMask) noexcept { return false; }
 
 // The first certificates for the lanes of screened (the others are left
 // open): r, q1, q2 in the safe range (eq. (O9)): |Q_ij| <= 2^60,
@@ -195,8 +203,9 @@ PW85_ALWAYS_INLINE FirstDecision<Lane> first_certificates(Lane const r[kDim], La
   Mask<Lane> const open = and_not(screened, out.plane);
   out.one = Mask<Lane>{};
   out.zero = out.plane;
+  out.open = open;
   out.h1 = out.h2 = out.g1 = out.g2 = Lane{};
-  if (!lanes::any(open)) return out;
+  if (plane_settles_all(open)) return out;
   Lane const h1 = lanes::vsqrt(A1), h2 = lanes::vsqrt(A2);
   out.h1 = out.g1 = h1;
   out.h2 = out.g2 = h2;
@@ -221,6 +230,7 @@ PW85_ALWAYS_INLINE FirstDecision<Lane> first_certificates(Lane const r[kDim], La
   out.zero = out.plane | and_not(and_not(open & negative, o13), positive);
   Mask<Lane> still_open = and_not(open, o13 | positive | negative);
   one_branch(still_open);
+  out.open = still_open;
   if (!lanes::any(still_open)) return out;
   // --- (O18) at tau1: one step of the map (M19) of docs/methods.md from
   // l = 1/2, tau1 = g1 / (g1 + g2), g_k^2 = n^T Q_k n along
@@ -237,6 +247,7 @@ PW85_ALWAYS_INLINE FirstDecision<Lane> first_certificates(Lane const r[kDim], La
   subdivide<Lane>(x, g2, g1, positive, negative);
   out.one = out.one | (still_open & positive);
   out.zero = out.zero | and_not(still_open & negative, positive);
+  out.open = and_not(still_open, positive | negative);
   return out;
 }
 
@@ -257,7 +268,7 @@ PW85_ALWAYS_INLINE int filters_inline(Vec3 const &r, Sym3 const &q1, Sym3 const 
     stage = kStageSpheres;
     return 0;
   }
-  if (d.one | d.zero) {
+  if (!d.open) {
     stage = kStageFilter;
     return d.one;
   }
