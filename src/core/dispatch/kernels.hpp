@@ -18,6 +18,7 @@
 #include "common/orientation.hpp"
 #include "eval/dd_kernels.hpp"
 #include "overlap/overlap_dd.hpp"
+#include "overlap/overlap_variants.hpp"
 
 namespace pw85 {
 
@@ -25,6 +26,7 @@ struct Kernels {
   DdKernels const *dd;
   OverlapDdKernels const *overlap_dd;
   OrientationKernels const *orientation;
+  OverlapKernels const *overlap;
 };
 
 // The table of variant v if the build has it, else of the highest built

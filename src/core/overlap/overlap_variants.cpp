@@ -4,8 +4,9 @@
 // the batch calls (overlap_lanes, W = kOverlapLanesV4 = 8 in the x86-64-v4
 // variant, one AVX-512 register; kOverlapLanes = 4 in the others), each for
 // the x86-64 levels v4 (AVX-512: 32 vector registers, fewer spills of the
-// bounded values), v3 (AVX2) and the portable code, chosen at run time
-// (docs/overlap.md, "Instruction sets and reproducibility").
+// bounded values), v3 (AVX2) and the portable code; the table of this CPU
+// (dispatch/kernels.hpp) chooses among them (docs/overlap.md, "Instruction
+// sets and reproducibility").
 //
 // Compiled with GCC's default contraction (src/meson.build), like
 // overlap.cpp: the v3 and v4 variants fuse some a * b + c into FMAs; every
@@ -17,6 +18,7 @@
 #include "common/spd.hpp"
 #include "overlap/filters.hpp"
 #include "overlap/overlap.hpp"
+#include "overlap/overlap_variants.hpp"
 
 namespace pw85 {
 
@@ -87,75 +89,41 @@ PW85_ALWAYS_INLINE void lanes_body(double const *const rp[W], double const *cons
   for (int l = 0; l < W; ++l) verdict[l] = static_cast<int>(v[l]);
 }
 
+// The kernels of one variant, compiled with the target attribute TARGET;
+// WIDE lanes per vector (8 pairs: WIDE lanes at a time).
+#define PW85_OVERLAP_VARIANT(name, TARGET, WIDE)                                                \
+  [[gnu::noinline]] TARGET bool screened_##name(double const *rp, double const *q1p,            \
+                                                double const *q2p, int &verdict,                \
+                                                Status &status) noexcept {                      \
+    return screened_body(rp, q1p, q2p, verdict, status);                                        \
+  }                                                                                             \
+  TARGET void lanes4_##name(double const *const rp[4], double const *const q1p[4],              \
+                            double const *const q2p[4], int verdict[4]) noexcept {              \
+    lanes_body<4>(rp, q1p, q2p, verdict);                                                       \
+  }                                                                                             \
+  TARGET void lanes8_##name(double const *const rp[8], double const *const q1p[8],              \
+                            double const *const q2p[8], int verdict[8]) noexcept {              \
+    for (int l = 0; l < 8; l += WIDE) lanes_body<WIDE>(rp + l, q1p + l, q2p + l, verdict + l);  \
+  }                                                                                             \
+  constexpr OverlapKernels kOverlap_##name = {screened_##name, lanes4_##name, lanes8_##name,    \
+                                              WIDE};
+
+static_assert(kOverlapLanes == 4 && kOverlapLanesV4 == 8, "the widths of OverlapKernels");
+PW85_OVERLAP_VARIANT(portable, , 4)
 #if PW85_ISA_LEVELS
-PW85_TARGET_V4 bool screened_v4(double const *rp, double const *q1p, double const *q2p,
-                                int &verdict, Status &status) noexcept {
-  return screened_body(rp, q1p, q2p, verdict, status);
-}
-PW85_TARGET_V3 bool screened_v3(double const *rp, double const *q1p, double const *q2p,
-                                int &verdict, Status &status) noexcept {
-  return screened_body(rp, q1p, q2p, verdict, status);
-}
-PW85_TARGET_V4 void lanes_v4(double const *const rp[kOverlapLanesV4],
-                             double const *const q1p[kOverlapLanesV4],
-                             double const *const q2p[kOverlapLanesV4],
-                             int verdict[kOverlapLanesV4]) noexcept {
-  lanes_body<kOverlapLanesV4>(rp, q1p, q2p, verdict);
-}
-PW85_TARGET_V3 void lanes_v3(double const *const rp[kOverlapLanes],
-                             double const *const q1p[kOverlapLanes],
-                             double const *const q2p[kOverlapLanes],
-                             int verdict[kOverlapLanes]) noexcept {
-  lanes_body<kOverlapLanes>(rp, q1p, q2p, verdict);
-}
+PW85_OVERLAP_VARIANT(v3, PW85_TARGET_V3, 4)
+PW85_OVERLAP_VARIANT(v4, PW85_TARGET_V4, 8)
 #endif
 
 }  // namespace
 
-bool overlap_screened(double const *rp, double const *q1p, double const *q2p, int &verdict,
-                      Status &status) noexcept {
+OverlapKernels const *overlap_kernels_for(Variant v) noexcept {
 #if PW85_ISA_LEVELS
-  if (isa::has_v4()) return screened_v4(rp, q1p, q2p, verdict, status);
-  if (isa::has_v3()) return screened_v3(rp, q1p, q2p, verdict, status);
+  if (v == Variant::v4) return &kOverlap_v4;
+  if (v == Variant::v3) return &kOverlap_v3;
 #endif
-  return screened_body(rp, q1p, q2p, verdict, status);
+  (void)v;
+  return &kOverlap_portable;
 }
-
-int overlap_lanes_width() noexcept {
-#if PW85_ISA_LEVELS
-  if (isa::has_v4()) return kOverlapLanesV4;
-#endif
-  return kOverlapLanes;
-}
-
-// Each width runs on every CPU: kOverlapLanesV4 lanes in the x86-64-v4
-// variant, else as blocks of kOverlapLanes; kOverlapLanes lanes in the
-// x86-64-v3 variant, else in the portable body.
-template <int W>
-void overlap_lanes(double const *const r[W], double const *const q1[W], double const *const q2[W],
-                   int verdict[W]) noexcept {
-  static_assert(W == kOverlapLanes || W == kOverlapLanesV4, "the widths of overlap.hpp");
-  if constexpr (W == kOverlapLanesV4) {
-#if PW85_ISA_LEVELS
-    if (isa::has_v4()) return lanes_v4(r, q1, q2, verdict);
-#endif
-    for (int l = 0; l < W; l += kOverlapLanes)
-      overlap_lanes<kOverlapLanes>(r + l, q1 + l, q2 + l, verdict + l);
-  } else {
-#if PW85_ISA_LEVELS
-    if (isa::has_v3()) return lanes_v3(r, q1, q2, verdict);
-#endif
-    lanes_body<W>(r, q1, q2, verdict);
-  }
-}
-
-template void overlap_lanes<kOverlapLanes>(double const *const[kOverlapLanes],
-                                           double const *const[kOverlapLanes],
-                                           double const *const[kOverlapLanes],
-                                           int[kOverlapLanes]) noexcept;
-template void overlap_lanes<kOverlapLanesV4>(double const *const[kOverlapLanesV4],
-                                             double const *const[kOverlapLanesV4],
-                                             double const *const[kOverlapLanesV4],
-                                             int[kOverlapLanesV4]) noexcept;
 
 }  // namespace pw85
