@@ -16,6 +16,7 @@
 
 #include "dispatch/variant.hpp"
 #include "common/orientation.hpp"
+#include "derivatives/derivatives_variants.hpp"
 #include "eval/dd_kernels.hpp"
 #include "overlap/overlap_dd.hpp"
 #include "overlap/overlap_variants.hpp"
@@ -27,6 +28,7 @@ struct Kernels {
   OverlapDdKernels const *overlap_dd;
   OrientationKernels const *orientation;
   OverlapKernels const *overlap;
+  DerivativeKernels const *derivatives;
 };
 
 // The table of variant v if the build has it, else of the highest built
