@@ -66,8 +66,7 @@ inline Status derivatives_variant(Status status, MethodResult const &res, Vec3 c
 // resolves it relative to itself (near 1, 1 - lambda is resolved only to
 // 2^-53 absolutely: too coarse for the Newton steps of (E7), and for the
 // first-order terms of (E8) and (E9), when 1 - lambda is small, i.e. Q1
-// much larger than Q2; measured there before the swap: relative errors up
-// to 1.7e-9 with PW85_OK on x86-64-v4, NO_CONVERGENCE elsewhere).
+// much larger than Q2).
 // mu^2(r, Q1, Q2) = mu^2(-r, Q2, Q1): mu2 and the Hessian are the same,
 // g changes sign, d_q1 and d_q2 swap, and so do the torques (rotating
 // ellipsoid 1 about its centre is rotating the swapped pair's ellipsoid 2;
