@@ -23,10 +23,10 @@ namespace lanes {
 // target lacks is split by GCC).
 template <int W>
 struct Width {
-  typedef double V __attribute__((vector_size(8 * W)));
+  typedef double type __attribute__((vector_size(8 * W)));
 };
 template <int W>
-using VecD = typename Width<W>::V;
+using VecD = typename Width<W>::type;
 
 // The width of the lane loops that do not choose one per instruction set.
 constexpr int kLanes = 4;
@@ -50,10 +50,10 @@ typedef MaskD<kLanes> M;
 // The unsigned mask type of a vector type: 0 or ~0 per lane.
 template <int W>
 struct UMaskWidth {
-  typedef unsigned long long M __attribute__((vector_size(8 * W)));
+  typedef unsigned long long type __attribute__((vector_size(8 * W)));
 };
 template <class T>
-using UMaskOf = typename UMaskWidth<width<T>()>::M;
+using UMaskOf = typename UMaskWidth<width<T>()>::type;
 
 // Comparisons lane by lane as unsigned masks: lt(x, y) is x < y, and so on
 // (y a vector or a double). GCC 12 folds the & or | of two comparisons
@@ -85,8 +85,8 @@ PW85_LANES_COMPARISON(ne, !=)
 
 template <class T>
 PW85_ALWAYS_INLINE T vabs(T x) noexcept {
-  typedef MaskOf<T> K;
-  return reinterpret_cast<T>(reinterpret_cast<K>(x) & (K{} + ~kSign));
+  typedef MaskOf<T> Bits;
+  return reinterpret_cast<T>(reinterpret_cast<Bits>(x) & (Bits{} + ~kSign));
 }
 // m ? a : b, lane by lane.
 template <class K, class T>
@@ -100,9 +100,9 @@ PW85_ALWAYS_INLINE T vmax(T a, T b) noexcept { return a > b ? a : b; }
 // std::copysign(x, y), lane by lane.
 template <class T>
 PW85_ALWAYS_INLINE T copysign(T x, T y) noexcept {
-  typedef MaskOf<T> K;
-  return reinterpret_cast<T>((reinterpret_cast<K>(x) & (K{} + ~kSign)) |
-                             (reinterpret_cast<K>(y) & (K{} + kSign)));
+  typedef MaskOf<T> Bits;
+  return reinterpret_cast<T>((reinterpret_cast<Bits>(x) & (Bits{} + ~kSign)) |
+                             (reinterpret_cast<Bits>(y) & (Bits{} + kSign)));
 }
 template <class T>
 PW85_ALWAYS_INLINE T vsqrt(T x) noexcept {
