@@ -16,8 +16,10 @@
 
 #include "dispatch/variant.hpp"
 #include "common/orientation.hpp"
+#include "derivatives/derivatives_variants.hpp"
 #include "eval/dd_kernels.hpp"
 #include "overlap/overlap_dd.hpp"
+#include "overlap/overlap_variants.hpp"
 
 namespace pw85 {
 
@@ -25,6 +27,8 @@ struct Kernels {
   DdKernels const *dd;
   OverlapDdKernels const *overlap_dd;
   OrientationKernels const *orientation;
+  OverlapKernels const *overlap;
+  DerivativeKernels const *derivatives;
 };
 
 // The table of variant v if the build has it, else of the highest built
