@@ -21,6 +21,7 @@ Variant probe_cpu() noexcept {
 
 Kernels make_kernels(Variant v) noexcept {
   return Kernels{dd_kernels_for(v), overlap_dd_kernels_for(v), orientation_kernels_for(v),
+                 overlap_kernels_for(v), derivative_kernels_for(v),
                  default_kernels_for(v)};
 }
 

@@ -17,8 +17,10 @@
 #include "dispatch/variant.hpp"
 #include "common/orientation.hpp"
 #include "contact/default_variants.hpp"
+#include "derivatives/derivatives_variants.hpp"
 #include "eval/dd_kernels.hpp"
 #include "overlap/overlap_dd.hpp"
+#include "overlap/overlap_variants.hpp"
 
 namespace pw85 {
 
@@ -26,6 +28,8 @@ struct Kernels {
   DdKernels const *dd;
   OverlapDdKernels const *overlap_dd;
   OrientationKernels const *orientation;
+  OverlapKernels const *overlap;
+  DerivativeKernels const *derivatives;
   DefaultKernels const *contact_default;
 };
 
