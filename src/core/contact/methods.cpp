@@ -59,7 +59,7 @@ Status contact_brent_checked(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   return res.mu2_error <= kBrentRelAccuracy * res.mu2 ? kOk : kInaccurate;
 }
 
-// ZHENG (dca/dca_3d.cpp) with the same independent check as BRENT: its own
+// ZHENG (zheng.cpp) with the same independent check as BRENT: its own
 // estimate (D13) compares mu2 with a double f at its lambda, which can agree
 // with it while both are wrong when Q(lambda) is ill-conditioned.
 Status contact_zheng_checked(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
