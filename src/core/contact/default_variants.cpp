@@ -91,14 +91,9 @@ DefaultKernels const kDefaultV4 = {contact_v4, lanes_v4};
 
 }  // namespace
 
-DefaultKernels const *default_kernels_for(Variant v) noexcept {
-#if PW85_ISA_LEVELS
-  if (v == Variant::v4) return &kDefaultV4;
-  if (v == Variant::v3) return &kDefaultV3;
-#endif
-  (void)v;
-  return &kDefaultPortable;
-}
+const DefaultKernels default_kernels[kVariantCount] = {
+    kDefaultPortable, kDefaultPortable, PW85_IF_LEVELS(kDefaultV3, kDefaultPortable),
+    PW85_IF_LEVELS(kDefaultV4, kDefaultPortable)};
 
 Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                        MethodResult &res) noexcept {

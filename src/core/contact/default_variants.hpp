@@ -25,6 +25,6 @@ struct DefaultKernels {
 // The kernels of variant v: x86-64-v4 runs the coefficient step first (one
 // pair and eight lanes); x86-64-v3 the general method with its first step
 // in AVX2 lanes; portable and fma the portable code.
-DefaultKernels const *default_kernels_for(Variant v) noexcept;
+extern const DefaultKernels default_kernels[kVariantCount];
 
 }  // namespace pw85

@@ -47,15 +47,9 @@ constexpr DerivativeKernels kDerivatives_v4 = {from_solution_v4};
 
 }  // namespace
 
-DerivativeKernels const *derivative_kernels_for(Variant v) noexcept {
-#if PW85_ISA_LEVELS
-  if (v == Variant::v4) return &kDerivatives_v4;
-#endif
-#if PW85_ISA_FMA
-  if (v != Variant::portable) return &kDerivatives_fma;
-#endif
-  (void)v;
-  return &kDerivatives_portable;
-}
+const DerivativeKernels derivative_kernels[kVariantCount] = {
+    kDerivatives_portable, PW85_IF_FMA(kDerivatives_fma, kDerivatives_portable),
+    PW85_IF_FMA(kDerivatives_fma, kDerivatives_portable),
+    PW85_IF_LEVELS(kDerivatives_v4, PW85_IF_FMA(kDerivatives_fma, kDerivatives_portable))};
 
 }  // namespace pw85

@@ -21,6 +21,6 @@ struct DerivativeKernels {
 // The kernels of variant v: x86-64-v4 (with (E9)), else the fused
 // multiply-add in the double-double products (fma and x86-64-v3) where
 // built, else the portable code.
-DerivativeKernels const *derivative_kernels_for(Variant v) noexcept;
+extern const DerivativeKernels derivative_kernels[kVariantCount];
 
 }  // namespace pw85
