@@ -102,7 +102,7 @@ def main():
     for e in (20, 52, 60):
         seeds[f"box-tilt-pow2-{e}"] = seed(BOX | TILT, 0, far, small, small,
                                         box=[1.0, 1.0, 1.0, 2.0 ** e, 0, 0], scale=1.0)
-    ball = [0.64, 0, 0, 0.64, 0, 0.64]
+    ball = [0.32, 0, 0, 0.32, 0, 0.32]  # the report's pair: mu^2 = 1.5625 at the image (-1, 0, 0)
     seeds["box-centres-pow2-53"] = seed(BOX | ON_X, 0, [2.0 ** 53, 0, 0], ball, ball,
                                      box=[3.0, 3.0, 3.0, 0, 0, 0], scale=1.0)
     seeds["box-tilt-100-far"] = seed(BOX | TILT, 0, [1.3e6 + 0.3, -2.1e6 - 0.1, 0.7e6 + 0.2], small, small,
