@@ -145,6 +145,14 @@ def main():
         qs = [v[i] * v[j] + (10.0 ** e if i == j else 0.0) for i in range(3) for j in range(i, 3)]
         seeds[f"nearly-singular-1e{e}"] = seed(0, 0, [0.1, 0.8, -0.3], qs, sphere)
 
+    # Overlapping pairs whose support values overflow in the configuration's
+    # plane test (k = 341 ... 500 of test-configuration's huge_matrices).
+    base1, base2 = [2.0, -1.0, 0.5, 2.0, -0.7, 2.0], [1.5, 0.6, -0.4, 2.5, 0.3, 1.0]
+    for k in (341, 400):
+        seeds[f"configuration-huge-pow2-{k}"] = seed(0, 0, [1.0, 2.0, 0.0],
+                                                     [x * 2.0 ** k for x in base1],
+                                                     [x * 2.0 ** k for x in base2])
+
     # pw85_configuration_pairs: s below 1 and NaN (call errors).
     seeds["configuration-scale-below-1"] = seed(BOX, 0, r, q1, q2, box=box, scale=0.5)
     seeds["configuration-scale-nan"] = seed(BOX, 0, r, q1, q2, box=box, scale=math.nan)
