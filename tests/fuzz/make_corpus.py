@@ -108,6 +108,12 @@ def main():
     seeds["box-tilt-100-far"] = seed(BOX | TILT, 0, [1.3e6 + 0.3, -2.1e6 - 0.1, 0.7e6 + 0.2], small, small,
                                      box=[1.0, 1.0, 1.0, 100.0, -100.0, 100.0], scale=1.0)
 
+    # Tilts that make the wrap need more than 2^50 lattice vectors along a2
+    # (a refused pair, PW85_ERR_INVALID_ARGUMENT).
+    seeds["box-tilt-count-limit"] = seed(BOX | TILT, 0, [1.3e6 + 0.3, -2.1e6 - 0.1, 0.7e6 + 0.2],
+                                         small, small,
+                                         box=[1.0, 1.0, 1.0, 100.0, 1.8e11, 1.7e69], scale=1.0)
+
     # Contact point and derivatives at size ratios 2^k (the report's r12).
     r4 = [float.fromhex("-0x1.603d97098ec97p-3"), float.fromhex("0x1.087c848e777b7p-1"),
           float.fromhex("-0x1.0cdcb891621c6p+1")]
