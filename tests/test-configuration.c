@@ -524,6 +524,40 @@ static void test_bad_input(void) {
   g_assert_cmpstr(pw85_strerror(PW85_ERR_NO_MEMORY), ==, "memory allocation failed");
 }
 
+/* Two ellipsoids whose matrices are scaled by 2^k, k = 0 ... 1000, centres
+ * at distance sqrt(5): each centre lies inside the other ellipsoid (the
+ * smallest eigenvalue of each base matrix is above 0.3 by Gershgorin, so
+ * r^T Q^-1 r <= 5 / (0.3 2^k) < 1 from k = 5), so the pair overlaps at
+ * every scale from k = 5 on. The broad phase's plane test meets overflowing
+ * support values (inf - inf) from k = 341: it must decline there, not
+ * separate the pair. Checked: the pair is found by pw85_configuration_pairs
+ * and by a trial move, as pw85_overlap finds it. */
+static void test_pairs_huge_matrices(void) {
+  double const base1[6] = {2.0, -1.0, 0.5, 2.0, -0.7, 2.0};
+  double const base2[6] = {1.5, 0.6, -0.4, 2.5, 0.3, 1.0};
+  int missed = 0;
+  for (int k = 5; k <= 1000; k++) {
+    double q[12], centres[6] = {0.0, 0.0, 0.0, 1.0, 2.0, 0.0};
+    for (int t = 0; t < 6; t++) {
+      q[t] = ldexp(base1[t], k);
+      q[6 + t] = ldexp(base2[t], k);
+    }
+    pw85_configuration *cf = NULL;
+    g_assert_cmpint(pw85_configuration_create(2, centres, q, NULL, &cf, NULL), ==, PW85_OK);
+    long long i[1], j[1], count = -1, moved = -7;
+    int const s = pw85_configuration_pairs(cf, 1.0, 1, 1, i, j, NULL, &count, NULL);
+    int const sm = pw85_configuration_test_move(cf, 1, centres + 3, q + 6, &moved);
+    g_assert_cmpint(pw85_overlap(centres + 3, q, q + 6), ==, 1);
+    if (s != PW85_OK || count != 1 || sm != PW85_OK || moved != 0) {
+      missed++;
+      g_test_message("k = %d: pairs status %d count %lld, test_move status %d j %lld", k, s,
+                     count, sm, moved);
+    }
+    pw85_configuration_destroy(cf);
+  }
+  g_assert_cmpint(missed, ==, 0);
+}
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   g_test_add_func("/pw85_configuration_pairs/open", test_pairs_open);
@@ -531,6 +565,7 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_configuration_pairs/triclinic", test_pairs_triclinic);
   g_test_add_func("/pw85_configuration_pairs/dense", test_pairs_dense);
   g_test_add_func("/pw85_configuration_pairs/large_box", test_pairs_large);
+  g_test_add_func("/pw85_configuration_pairs/huge_matrices", test_pairs_huge_matrices);
   g_test_add_func("/pw85_configuration_test_move/brute_force", test_move_brute_force);
   g_test_add_func("/pw85_configuration_update/brute_force", test_update);
   g_test_add_func("/pw85_configuration/bad_input", test_bad_input);

@@ -143,8 +143,12 @@ inline bool spheres_apart(double const r[3], double reach) noexcept {
 
 // Upper bound of n^T Q n for a positive definite Q: the computed value plus
 // a bound of its rounding error, 32 u sum_a n_a^2 Q_aa (>= gamma_6 sum_ab
-// |n_a| |Q_ab| |n_b|, as |Q_ab| <= (Q_aa + Q_bb) / 2). T: double, or a
-// vector of doubles (one pair per lane).
+// |n_a| |Q_ab| |n_b|, as |Q_ab| <= (Q_aa + Q_bb) / 2), hence >= 0 unless a
+// product overflows (inf - inf: NaN) or underflows (a tiny negative value).
+// Neither is clamped: the square root is then NaN or +inf and the plane
+// test (S1) below declines, as it must (a bound clamped to 0 would let it
+// separate overlapping ellipsoids). T: double, or a vector of doubles (one
+// pair per lane).
 template <class T>
 PW85_ALWAYS_INLINE T support2_upper(T const q[6], T const n[3]) noexcept {
   T const a0 = q[0] * n[0] + q[1] * n[1] + q[2] * n[2];
@@ -152,7 +156,7 @@ PW85_ALWAYS_INLINE T support2_upper(T const q[6], T const n[3]) noexcept {
   T const a2 = q[2] * n[0] + q[4] * n[1] + q[5] * n[2];
   T const h = n[0] * a0 + n[1] * a1 + n[2] * a2;
   T const diag = q[0] * n[0] * n[0] + q[3] * n[1] * n[1] + q[5] * n[2] * n[2];
-  return lanes::vmax(h + 32 * kU * diag, T{} + 0.0);
+  return h + 32 * kU * diag;
 }
 
 // (S1): true (each lane: a true mask) only when the plane of normal n =
