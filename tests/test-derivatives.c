@@ -462,6 +462,28 @@ static void test_bad_input(void) {
   g_assert_true(all_nan(&d));
 }
 
+/* n ellipsoids of semi-axes in [amin, 1], random orientations, centres in
+ * [0, side)^3, and m random pairs (i, j), i != j, with their per-pair arrays
+ * r12 = c_j - c_i, q1 = q_i, q2 = q_j. */
+static void random_scene(GRand *rng, int n, int m, double amin, double side, double *centres,
+                         double *q, long long *pairs, double *r12, double *q1, double *q2) {
+  for (int i = 0; i < n; i++) {
+    double rad[3], ax[9];
+    random_radii(rng, amin, 1.0, rad);
+    random_axes(rng, ax);
+    make_q(rad, ax, q + 6 * i);
+    for (int c = 0; c < 3; c++) centres[3 * i + c] = g_rand_double_range(rng, 0.0, side);
+  }
+  for (int k = 0; k < m; k++) {
+    int i = g_rand_int_range(rng, 0, n), j = (i + 1 + g_rand_int_range(rng, 0, n - 1)) % n;
+    pairs[2 * k] = i;
+    pairs[2 * k + 1] = j;
+    for (int c = 0; c < 3; c++) r12[3 * k + c] = centres[3 * j + c] - centres[3 * i + c];
+    memcpy(q1 + 6 * k, q + 6 * i, sizeof(double[6]));
+    memcpy(q2 + 6 * k, q + 6 * j, sizeof(double[6]));
+  }
+}
+
 /* The batch forms with PW85_DERIVATIVES_FORCES: bitwise the one-pair
  * PW85_DERIVATIVES_FORCES call (and so the full call's fields, above), for
  * 1000 random pairs of semi-axes in [0.001, 1] (lanes and their fallbacks);
@@ -473,21 +495,7 @@ static void test_batch_forces(void) {
   static long long pairs[2 * M];
   static pw85_derivatives_t d[M], ds[M];
   static int status[M], status_s[M];
-  for (int i = 0; i < N; i++) {
-    double rad[3], ax[9];
-    random_radii(rng, 0.001, 1.0, rad);
-    random_axes(rng, ax);
-    make_q(rad, ax, q + 6 * i);
-    for (int c = 0; c < 3; c++) centres[3 * i + c] = g_rand_double_range(rng, 0.0, 3.0);
-  }
-  for (int k = 0; k < M; k++) {
-    int i = g_rand_int_range(rng, 0, N), j = (i + 1 + g_rand_int_range(rng, 0, N - 1)) % N;
-    pairs[2 * k] = i;
-    pairs[2 * k + 1] = j;
-    for (int c = 0; c < 3; c++) r12[3 * k + c] = centres[3 * j + c] - centres[3 * i + c];
-    memcpy(q1 + 6 * k, q + 6 * i, sizeof(double[6]));
-    memcpy(q2 + 6 * k, q + 6 * j, sizeof(double[6]));
-  }
+  random_scene(rng, N, M, 0.001, 3.0, centres, q, pairs, r12, q1, q2);
   int compared = 0;
   for (int nt = 0; nt <= 2; nt += 2) {
     g_assert_cmpint(pw85_contact_derivatives_pairs_ex(M, r12, q1, q2, PW85_DERIVATIVES_FORCES, d,
@@ -530,21 +538,7 @@ static void test_batch(void) {
   enum { N = 40, M = 100 };
   double centres[3 * N], q[6 * N], r12[3 * M], q1[6 * M], q2[6 * M];
   long long pairs[2 * M];
-  for (int i = 0; i < N; i++) {
-    double rad[3], ax[9];
-    random_radii(rng, 0.1, 1.0, rad);
-    random_axes(rng, ax);
-    make_q(rad, ax, q + 6 * i);
-    for (int d = 0; d < 3; d++) centres[3 * i + d] = g_rand_double_range(rng, 0.0, 10.0);
-  }
-  for (int k = 0; k < M; k++) {
-    int i = g_rand_int_range(rng, 0, N), j = (i + 1 + g_rand_int_range(rng, 0, N - 1)) % N;
-    pairs[2 * k] = i;
-    pairs[2 * k + 1] = j;
-    for (int d = 0; d < 3; d++) r12[3 * k + d] = centres[3 * j + d] - centres[3 * i + d];
-    memcpy(q1 + 6 * k, q + 6 * i, sizeof(double[6]));
-    memcpy(q2 + 6 * k, q + 6 * j, sizeof(double[6]));
-  }
+  random_scene(rng, N, M, 0.1, 10.0, centres, q, pairs, r12, q1, q2);
   q1[6 * 37] = NAN;    /* pair 37 fails in the per-pair form */
   pairs[2 * 53] = N;   /* pair 53 out of range in the scene form */
   pw85_derivatives_t d[M], one;
