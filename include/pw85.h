@@ -758,11 +758,40 @@ typedef struct pw85_derivatives_t {
 PW85_API int pw85_contact_derivatives(double const r12[PW85_DIM], double const q1[PW85_SYM],
                                       double const q2[PW85_SYM], pw85_derivatives_t *d);
 
+/* Values of the flags argument of the _ex derivatives calls: what to
+ * compute. PW85_DERIVATIVES_ALL: every field (the calls without _ex).
+ * PW85_DERIVATIVES_FORCES: mu2, lambda, d_r12, d_theta1 and d_theta2 only,
+ * what forces and torques need; d_q1, d_q2 and hess_r12 are set to NaN and
+ * not computed where skipping them does not change the other fields
+ * (docs/derivatives.md). Where the PW85_DERIVATIVES_ALL call returns PW85_OK
+ * or PW85_ERR_INACCURATE, the PW85_DERIVATIVES_FORCES call returns the same
+ * status and the same bits in mu2, lambda, d_r12, d_theta1 and d_theta2.
+ * Other values are invalid. */
+#define PW85_DERIVATIVES_ALL 0u
+#define PW85_DERIVATIVES_FORCES 1u
+
+/* pw85_contact_derivatives() of the fields that flags selects
+ * (PW85_DERIVATIVES_ALL or PW85_DERIVATIVES_FORCES); the fields not selected
+ * are NaN. Flags of any other value: PW85_ERR_INVALID_ARGUMENT and every
+ * field of *d NaN (when d is not NULL). */
+PW85_API int pw85_contact_derivatives_ex(double const r12[PW85_DIM], double const q1[PW85_SYM],
+                                         double const q2[PW85_SYM], unsigned flags,
+                                         pw85_derivatives_t *d);
+
 /* d[k] = pw85_contact_derivatives() of pair k of per-pair arrays
  * (conventions of pw85_contact_pairs). */
 PW85_API int pw85_contact_derivatives_pairs(long long m, double const *r12, double const *q1,
                                             double const *q2, pw85_derivatives_t *d,
                                             int *status, int nthreads);
+
+/* d[k] = pw85_contact_derivatives_ex(..., flags, ...) of pair k of per-pair
+ * arrays (conventions of pw85_contact_pairs). Flags other than
+ * PW85_DERIVATIVES_ALL and PW85_DERIVATIVES_FORCES: PW85_ERR_INVALID_ARGUMENT,
+ * d and status untouched. */
+PW85_API int pw85_contact_derivatives_pairs_ex(long long m, double const *r12,
+                                               double const *q1, double const *q2,
+                                               unsigned flags, pw85_derivatives_t *d,
+                                               int *status, int nthreads);
 
 /* d[k] = pw85_contact_derivatives() of pair k = (i, j) of a scene, r12 =
  * c_j - c_i or its periodic image (conventions of pw85_scene_contact); the
@@ -772,6 +801,16 @@ PW85_API int pw85_scene_contact_derivatives(long long n, double const *centres,
                                             double const *q, double const box[6], long long m,
                                             long long const *pairs, pw85_derivatives_t *d,
                                             int *status, int nthreads);
+
+/* d[k] = pw85_contact_derivatives_ex(..., flags, ...) of pair k = (i, j) of
+ * a scene (conventions of pw85_scene_contact_derivatives). Flags other than
+ * PW85_DERIVATIVES_ALL and PW85_DERIVATIVES_FORCES:
+ * PW85_ERR_INVALID_ARGUMENT, d and status untouched. */
+PW85_API int pw85_scene_contact_derivatives_ex(long long n, double const *centres,
+                                               double const *q, double const box[6],
+                                               long long m, long long const *pairs,
+                                               unsigned flags, pw85_derivatives_t *d,
+                                               int *status, int nthreads);
 
 /* ---- Time of first contact ----------------------------------------------
  * docs/contact_time.md. */
