@@ -14,6 +14,7 @@ _sig(lib.pw85_configuration_size, [P], LL)
 _sig(lib.pw85_configuration_pairs, [P, D, I, LL, P, P, P, ctypes.POINTER(LL), P])
 _sig(lib.pw85_configuration_test_move, [P, LL, P, P, ctypes.POINTER(LL)])
 _sig(lib.pw85_configuration_move, [P, LL, P, P])
+_sig(lib.pw85_configuration_neighbours, [P, LL, D, LL, P, ctypes.POINTER(LL)])
 
 _destroy = lib.pw85_configuration_destroy
 
@@ -241,6 +242,37 @@ class Scene:
         if ret != Status.OK:
             _raise("test_move", ret, i, c, qq, self.box)
         return int(j.value)
+
+    def neighbours(self, i, distance):
+        """Every j != i whose centre lies closer than distance to particle
+        i's (the pair's minimum image in a box), ascending, an int64 array;
+        no narrow phase. In a box, distance <= min(Lx, Ly, Lz)/2."""
+        n = len(self)
+        if isinstance(i, bool) or not isinstance(i, (int, np.integer)):
+            raise TypeError(f"i: expected an integer index, got {type(i).__name__}")
+        i = int(i)
+        if not 0 <= i < n:
+            raise IndexError(f"i = {i} outside [0, {n})")
+        if isinstance(distance, bool) or not isinstance(distance, (int, float, np.integer, np.floating)):
+            raise TypeError(f"distance: expected a real number, got {type(distance).__name__}")
+        distance = float(distance)
+        if not (distance >= 0.0 and np.isfinite(distance)):
+            raise ValueError(f"distance: expected a finite number >= 0, got {distance}")
+        h = self._h()
+        count = LL(0)
+        cap = 64
+        while True:
+            j = np.empty(cap, np.int64)
+            ret = lib.pw85_configuration_neighbours(h, i, distance, cap, j.ctypes.data, ctypes.byref(count))
+            if ret == Status.ERR_CAPACITY:
+                cap = count.value
+                continue
+            if ret != Status.OK:
+                msg = f"pw85.Scene.neighbours: {status_name(ret)} ({strerror(ret)})"
+                if ret == Status.ERR_INVALID_ARGUMENT and self.box is not None:
+                    msg += f": distance {distance} exceeds min(Lx, Ly, Lz)/2 of the box"
+                raise Error(msg, ret, None)
+            return j[:count.value].copy()
 
     def move(self, i, centre, q):
         """Moves particle i to (centre, q) (no overlap test); on error the

@@ -925,6 +925,41 @@ Status scene_test_move(Scene const &scene, long long i, double const centre[3],
   return kOk;
 }
 
+Status scene_neighbours(Scene const &scene, long long i, double distance, long long capacity,
+                        long long *j_out, long long &count) noexcept {
+  if (i < 0 || i >= scene.n || !(distance >= 0.0) || !std::isfinite(distance) || capacity < 0)
+    return kInvalidArgument;
+  if (scene.box.periodic && distance > scene.box.max_reach) return kInvalidArgument;
+  CellGrid const &g = scene.grid;
+  double const *ci = scene.centres + 3 * i;
+  double const d2 = distance * distance;
+  long long k[3], c[3];
+  for (int d = 0; d < 3; ++d) k[d] = stencil(g, d, distance * (1 + 4 * kMargin));
+  cell_coords(g, ci, c);
+  Buffer<long long> found;
+  bool oom = false, refused = false;
+  for_each_neighbour_cell(g, c, k, [&](long long cell) noexcept {
+    for (long long b = scene.head[cell]; b >= 0; b = scene.next[b]) {
+      if (b == i || oom) continue;
+      double r[3];
+      double const *cb = scene.centres + 3 * b;
+      if (!(i < b ? pair_r12(scene.box, ci, cb, r) : pair_r12(scene.box, cb, ci, r))) {
+        refused = true;
+        continue;
+      }
+      if (r[0] * r[0] + r[1] * r[1] + r[2] * r[2] < d2 && !found.push(b)) oom = true;
+    }
+  });
+  if (oom) return kNoMemory;
+  if (refused) return kInvalidArgument;
+  std::sort(found.data, found.data + found.size);
+  count = found.size;
+  if (found.size > capacity) return kCapacity;
+  if (found.size > 0)
+    std::memcpy(j_out, found.data, static_cast<size_t>(found.size) * sizeof(long long));
+  return kOk;
+}
+
 Status scene_move(Scene &scene, long long i, double const centre[3], double const q[6]) noexcept {
   double rt;
   Status const s = check_trial(scene, i, centre, q, rt);
