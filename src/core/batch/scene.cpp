@@ -581,28 +581,40 @@ struct CandidateSink {
   }
 };
 
+// Lane l of compress[bits][l]: the position of the l-th set bit of bits
+// (4 bits), 0 past the last: the passing lanes of a sphere test, packed.
+constexpr signed char kCompress[16][4] = {
+    {0, 0, 0, 0}, {0, 0, 0, 0}, {1, 0, 0, 0}, {0, 1, 0, 0}, {2, 0, 0, 0}, {0, 2, 0, 0},
+    {1, 2, 0, 0}, {0, 1, 2, 0}, {3, 0, 0, 0}, {0, 3, 0, 0}, {1, 3, 0, 0}, {0, 1, 3, 0},
+    {2, 3, 0, 0}, {0, 2, 3, 0}, {1, 2, 3, 0}, {0, 1, 2, 3}};
+
 // Sorted positions [b0, b1) against particle a, their images shifted by
-// shift.
-inline void scan_range(Sorted const &q, long long a, long long b0, long long b1,
-                       double const shift[3], CandidateSink &sink) noexcept {
+// shift. Inlined into each instruction-set variant of scan_cell.
+PW85_ALWAYS_INLINE void scan_range(Sorted const &q, long long a, long long b0, long long b1,
+                                   double const shift[3], CandidateSink &sink) noexcept {
   double const ax = q.wx.data[a] - shift[0], ay = q.wy.data[a] - shift[1],
                az = q.wz.data[a] - shift[2];
   double const ra = q.rad.data[a] + q.wrap_error;
   double const *wx = q.wx.data, *wy = q.wy.data, *wz = q.wz.data, *rad = q.rad.data;
   bool const exact = !q.grid.periodic;
-  // Branch-free first pass (most pairs fail the test, at unpredictable
-  // places): the passing b are gathered, then handled.
+  using V = lanes::VecD<kScanPad>;
+  // Branch-free first pass (most pairs fail the sphere test, at
+  // unpredictable places): the passing b are packed into hits, then (S1)
+  // runs on them four at a time.
   constexpr long long kChunk = 64;
-  long long hits[kChunk];
+  long long hits[kChunk + kScanPad];
+  V const vax = {ax, ax, ax, ax}, vay = {ay, ay, ay, ay}, vaz = {az, az, az, az};
+  V const vra = {ra, ra, ra, ra};
+  double const *qa = q.q.data + 6 * a;
+  V const qav[6] = {V{} + qa[0], V{} + qa[1], V{} + qa[2], V{} + qa[3], V{} + qa[4], V{} + qa[5]};
+  double const rerr = exact ? 0.0 : q.wrap_error;
+  V const vrerr = {rerr, rerr, rerr, rerr};
   for (long long c0 = b0; c0 < b1; c0 += kChunk) {
     long long const c1 = c0 + kChunk < b1 ? c0 + kChunk : b1;
     long long const len = c1 - c0;
     double const *px = wx + c0, *py = wy + c0, *pz = wz + c0, *pr = rad + c0;
-    // Four lanes at a time (GCC vector extensions; the arrays carry
-    // kScanPad readable entries past their end, lanes past len dropped).
-    using V = lanes::VecD<kScanPad>;
-    V const vax = {ax, ax, ax, ax}, vay = {ay, ay, ay, ay}, vaz = {az, az, az, az};
-    V const vra = {ra, ra, ra, ra};
+    // Four lanes at a time (the arrays carry kScanPad readable entries past
+    // their end, lanes past len dropped).
     int m = 0;
     for (long long t = 0; t < len; t += kScanPad) {
       V x, y, z, r;
@@ -613,27 +625,39 @@ inline void scan_range(Sorted const &q, long long a, long long b0, long long b1,
       V const dx = x - vax, dy = y - vay, dz = z - vaz, reach = vra + r;
       auto const near = dx * dx + dy * dy + dz * dz < reach * reach * (1 + kMargin);
       long long const lanes_left = len - t < kScanPad ? len - t : kScanPad;
-      for (int l = 0; l < lanes_left; ++l) {
-        hits[m] = c0 + t + l;
-        m += near[l] != 0;
-      }
+      int bits = static_cast<int>((near[0] & 1) | (near[1] & 2) | (near[2] & 4) | (near[3] & 8));
+      bits &= (1 << lanes_left) - 1;
+      for (int l = 0; l < kScanPad; ++l) hits[m + l] = c0 + t + kCompress[bits][l];
+      m += __builtin_popcount(static_cast<unsigned>(bits));
     }
-    // (S1) on the passing pairs (qa the same for all).
     sink.spheres += m;
-    double const *qa = q.q.data + 6 * a;
-    double const rerr = exact ? 0.0 : q.wrap_error;
-    for (int t = 0; t < m; ++t) {
-      long long const b = hits[t];
-      double const d[3] = {wx[b] - ax, wy[b] - ay, wz[b] - az};
-      if (!plane_separates(d, qa, q.q.data + 6 * b, rerr))
-        sink.candidate(a, b, rad[b] + q.rad.data[a]);
+    // (S1) on the passing pairs, four lanes at a time (the last group
+    // padded with its first pair).
+    for (int t = 0; t < m; t += kScanPad) {
+      double dl[3][kScanPad], ql[6][kScanPad];
+      for (int l = 0; l < kScanPad; ++l) {
+        long long const b = hits[t + l < m ? t + l : t];
+        dl[0][l] = wx[b] - ax;
+        dl[1][l] = wy[b] - ay;
+        dl[2][l] = wz[b] - az;
+        double const *qbp = q.q.data + 6 * b;
+        for (int k = 0; k < 6; ++k) ql[k][l] = qbp[k];
+      }
+      V d[3], qb[6];
+      std::memcpy(d, dl, sizeof d);
+      std::memcpy(qb, ql, sizeof qb);
+      auto const separated = plane_separates(d, qav, qb, vrerr);
+      int const w = m - t < kScanPad ? m - t : kScanPad;
+      for (int l = 0; l < w; ++l)
+        if (!separated[l]) sink.candidate(a, hits[t + l], rad[hits[t + l]] + q.rad.data[a]);
     }
   }
 }
 
 // Cell c's pairs, fast path (grid of cells at least rho / split wide,
 // split = 1 or 2; every periodic axis with at least 2 split + 1 cells).
-void scan_cell(Sorted const &q, long long c, int split, CandidateSink &sink) noexcept {
+PW85_ALWAYS_INLINE void scan_cell_body(Sorted const &q, long long c, int split,
+                                       CandidateSink &sink) noexcept {
   CellGrid const &g = q.grid;
   Box const &box = g.box;
   long long const nx = g.n[0], ny = g.n[1], nz = g.n[2];
@@ -688,6 +712,26 @@ void scan_cell(Sorted const &q, long long c, int split, CandidateSink &sink) noe
       }
       if (sink.status != kOk) return;
     }
+}
+
+// scan_cell_body for the CPU at hand: the x86-64-v3 variant (four lanes in
+// one AVX register) where the CPU has it, else the portable one; the same
+// operations, no contraction (-ffp-contract=off), so the same verdicts.
+#if PW85_ISA_LEVELS
+PW85_TARGET_V3 void scan_cell_v3(Sorted const &q, long long c, int split,
+                                 CandidateSink &sink) noexcept {
+  scan_cell_body(q, c, split, sink);
+}
+#endif
+void scan_cell_portable(Sorted const &q, long long c, int split, CandidateSink &sink) noexcept {
+  scan_cell_body(q, c, split, sink);
+}
+using ScanCell = void (*)(Sorted const &, long long, int, CandidateSink &) noexcept;
+ScanCell scan_cell_for_cpu() noexcept {
+#if PW85_ISA_LEVELS
+  if (isa::has_v3()) return scan_cell_v3;
+#endif
+  return scan_cell_portable;
 }
 
 // Cell c's pairs, general path (any grid): the neighbour cells of higher
@@ -766,6 +810,7 @@ Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacit
   Status status = kOk;
   long long spheres_total = 0, examined_total = 0;
   bool const want_mu2 = mu2_out != nullptr;
+  ScanCell const scan_cell = scan_cell_for_cpu();
   constexpr long long kBlock = 256;
 #pragma omp parallel num_threads(nt) if (nt > 1) reduction(+ : spheres_total, examined_total)
   {
