@@ -317,6 +317,7 @@ void free_particle_arrays(Scene &s) noexcept {
   std::free(s.centres);
   std::free(s.q);
   std::free(s.radius);
+  std::free(s.wrapped);
   std::free(s.next);
   std::free(s.prev);
   std::free(s.cell_of);
@@ -405,6 +406,7 @@ Status scene_assign(Scene &scene, long long n, double const *centres, double con
     next_scene.centres = allocate<double>(3 * n);
     next_scene.q = allocate<double>(6 * n);
     next_scene.radius = allocate<double>(n);
+    next_scene.wrapped = allocate<double>(3 * n);
     next_scene.next = allocate<long long>(n);
     next_scene.prev = allocate<long long>(n);
     next_scene.cell_of = allocate<long long>(n);
@@ -414,7 +416,7 @@ Status scene_assign(Scene &scene, long long n, double const *centres, double con
     next_scene.head = allocate<long long>(grid.cells);
     next_scene.grid_capacity = grid.cells;
   }
-  bool const ok = (!grow || (next_scene.centres && next_scene.q && next_scene.radius &&
+  bool const ok = (!grow || (next_scene.centres && next_scene.q && next_scene.radius && next_scene.wrapped &&
                              next_scene.next && next_scene.prev && next_scene.cell_of)) &&
                   (!grow_grid || next_scene.head);
   // On failure the new arrays go, else the old ones they replace.
@@ -434,6 +436,7 @@ Status scene_assign(Scene &scene, long long n, double const *centres, double con
   for (long long c = 0; c < grid.cells; ++c) scene.head[c] = -1;
   for (long long i = n - 1; i >= 0; --i) {
     scene.radius[i] = bounding_radius(q + 6 * i);
+    wrapped_centre(box, centres + 3 * i, scene.wrapped + 3 * i);
     link(scene, i, cell_of_point(grid, centres + 3 * i));
   }
   return kOk;
@@ -804,7 +807,7 @@ void scan_cell_general(Sorted const &q, long long c, double rho, CandidateSink &
   long long const *start = q.start.data;
   for (long long a = start[c]; a < start[c + 1] && sink.status == kOk; ++a) {
     double const ra = q.rad.data[a];
-    for_each_neighbour_cell(g, cc, k, [&](long long c2) noexcept {
+    for_each_neighbour_cell(g, cc, k, [&](long long c2, int const *) noexcept {
       if (c2 < c) return;
       for (long long b = c2 == c ? a + 1 : start[c2]; b < start[c2 + 1]; ++b) {
         double d[3];
@@ -967,6 +970,31 @@ Status check_trial(Scene const &scene, long long i, double const *centre, double
 
 }  // namespace
 
+namespace {
+
+// Screen of the object's grid queries: the image of particle b near the
+// point of wrapped centre w (shifted by the lattice vector of its cell's
+// wrap) lies at least reach + err from w, err the bound of the roundings of
+// the wrapped centres and of r12 (sort_by_cell's, for any accepted centre),
+// so the pair's exact r12 is at least reach long. wrap null (an axis
+// enumerated whole): no screen.
+inline bool image_apart(Scene const &scene, double const w[3], long long b, int const *wrap,
+                        double reach, double err) noexcept {
+  if (wrap == nullptr) return false;
+  double shift[3];
+  lattice_shift(scene.box, wrap, shift);
+  double const *wb = scene.wrapped + 3 * b;
+  double const d[3] = {wb[0] + shift[0] - w[0], wb[1] + shift[1] - w[1], wb[2] + shift[2] - w[2]};
+  double const limit = reach + err;
+  return d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= limit * limit * (1 + 2 * kMargin);
+}
+
+inline double screen_error(Box const &box) noexcept {
+  return box.periodic ? wrap_error_bound(box, kMaxFractional) : 0.0;
+}
+
+}  // namespace
+
 Status scene_test_move(Scene const &scene, long long i, double const centre[3],
                        double const q[6], long long &j_found) noexcept {
   double rt;
@@ -984,9 +1012,13 @@ Status scene_test_move(Scene const &scene, long long i, double const centre[3],
   Candidate *cand = local;
   long long m = 0, cap = kLocal;
   bool oom = false, refused = false;
-  for_each_neighbour_cell(g, c, k, [&](long long cell) noexcept {
+  double w[3];
+  wrapped_centre(scene.box, centre, w);
+  double const err = screen_error(scene.box);
+  for_each_neighbour_cell(g, c, k, [&](long long cell, int const *wrap) noexcept {
     for (long long b = scene.head[cell]; b >= 0; b = scene.next[b]) {
       if (b == i || oom) continue;
+      if (image_apart(scene, w, b, wrap, rt + scene.radius[b], err)) continue;
       double r[3];
       double const *cb = scene.centres + 3 * b;
       if (!(i < b ? pair_r12(scene.box, centre, cb, r) : pair_r12(scene.box, cb, centre, r))) {
@@ -1044,9 +1076,13 @@ Status scene_neighbours(Scene const &scene, long long i, double distance, long l
   cell_coords(g, ci, c);
   Buffer<long long> found;
   bool oom = false, refused = false;
-  for_each_neighbour_cell(g, c, k, [&](long long cell) noexcept {
+  double w[3];
+  wrapped_centre(scene.box, ci, w);
+  double const err = screen_error(scene.box);
+  for_each_neighbour_cell(g, c, k, [&](long long cell, int const *wrap) noexcept {
     for (long long b = scene.head[cell]; b >= 0; b = scene.next[b]) {
       if (b == i || oom) continue;
+      if (image_apart(scene, w, b, wrap, distance, err)) continue;
       double r[3];
       double const *cb = scene.centres + 3 * b;
       if (!(i < b ? pair_r12(scene.box, ci, cb, r) : pair_r12(scene.box, cb, ci, r))) {
@@ -1073,6 +1109,7 @@ Status scene_move(Scene &scene, long long i, double const centre[3], double cons
   std::memcpy(scene.centres + 3 * i, centre, 3 * sizeof(double));
   std::memcpy(scene.q + 6 * i, q, 6 * sizeof(double));
   scene.radius[i] = rt;
+  wrapped_centre(scene.box, centre, scene.wrapped + 3 * i);
   if (rt > scene.radius_max) scene.radius_max = rt;
   long long const cell = cell_of_point(scene.grid, centre);
   if (cell != scene.cell_of[i]) {

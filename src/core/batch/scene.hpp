@@ -17,6 +17,7 @@ struct Scene {
   double *centres = nullptr;  // 3n, as given
   double *q = nullptr;        // 6n
   double *radius = nullptr;   // n, bounding-sphere radius rounded up
+  double *wrapped = nullptr;  // 3n, centres wrapped into the box (wrapped_centre)
   double radius_max = 0;      // >= every radius
   // Cell grid for test_move/move: doubly linked lists of the particles of
   // each cell.
