@@ -221,13 +221,17 @@ class Scene:
         the others: np.stack([i, j], axis=1)."""
         return self._pairs(s, True, nthreads)
 
-    def _trial(self, func, i, centre, q):
+    def _index(self, i):
         n = len(self)
         if isinstance(i, bool) or not isinstance(i, (int, np.integer)):
             raise TypeError(f"i: expected an integer index, got {type(i).__name__}")
         i = int(i)
         if not 0 <= i < n:
             raise IndexError(f"i = {i} outside [0, {n})")
+        return i
+
+    def _trial(self, func, i, centre, q):
+        i = self._index(i)
         c = np.array(_arr(centre, "centre", 3, ndim=1), dtype=np.float64)
         qq = np.array(_arr(q, "q", 6, ndim=1), dtype=np.float64)
         return i, c, qq
@@ -247,12 +251,7 @@ class Scene:
         """Every j != i whose centre lies closer than distance to particle
         i's (the pair's minimum image in a box), ascending, an int64 array;
         no narrow phase. In a box, distance <= min(Lx, Ly, Lz)/2."""
-        n = len(self)
-        if isinstance(i, bool) or not isinstance(i, (int, np.integer)):
-            raise TypeError(f"i: expected an integer index, got {type(i).__name__}")
-        i = int(i)
-        if not 0 <= i < n:
-            raise IndexError(f"i = {i} outside [0, {n})")
+        i = self._index(i)
         if isinstance(distance, bool) or not isinstance(distance, (int, float, np.integer, np.floating)):
             raise TypeError(f"distance: expected a real number, got {type(distance).__name__}")
         distance = float(distance)

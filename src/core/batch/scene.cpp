@@ -993,6 +993,39 @@ inline double screen_error(Box const &box) noexcept {
   return box.periodic ? wrap_error_bound(box, kMaxFractional) : 0.0;
 }
 
+// The grid walk of test_move and neighbours: fn(b, r, reach(b)) for each
+// particle b != i in the cells within rho (the largest reach) of point x
+// whose image passes the screen, r the r12 of the pair (min(i, b),
+// max(i, b)) with x in i's place (pair_r12). Returns false where a minimum
+// image was refused.
+template <class Reach, class Fn>
+bool for_each_near(Scene const &scene, long long i, double const x[3], double rho, Reach reach,
+                   Fn fn) noexcept {
+  CellGrid const &g = scene.grid;
+  long long k[3], c[3];
+  for (int d = 0; d < 3; ++d) k[d] = stencil(g, d, rho);
+  cell_coords(g, x, c);
+  double w[3];
+  wrapped_centre(scene.box, x, w);
+  double const err = screen_error(scene.box);
+  bool refused = false;
+  for_each_neighbour_cell(g, c, k, [&](long long cell, int const *wrap) noexcept {
+    for (long long b = scene.head[cell]; b >= 0; b = scene.next[b]) {
+      if (b == i) continue;
+      double const rb = reach(b);
+      if (image_apart(scene, w, b, wrap, rb, err)) continue;
+      double r[3];
+      double const *cb = scene.centres + 3 * b;
+      if (!(i < b ? pair_r12(scene.box, x, cb, r) : pair_r12(scene.box, cb, x, r))) {
+        refused = true;
+        continue;
+      }
+      fn(b, r, rb);
+    }
+  });
+  return !refused;
+}
+
 }  // namespace
 
 Status scene_test_move(Scene const &scene, long long i, double const centre[3],
@@ -1000,52 +1033,37 @@ Status scene_test_move(Scene const &scene, long long i, double const centre[3],
   double rt;
   Status const s = check_trial(scene, i, centre, q, rt);
   if (s != kOk) return s;
-  CellGrid const &g = scene.grid;
-  double const rho = (rt + scene.radius_max) * (1 + 4 * kMargin);
-  long long k[3], c[3];
-  for (int d = 0; d < 3; ++d) k[d] = stencil(g, d, rho);
-  cell_coords(g, centre, c);
   // Candidates in ascending j, then the exact predicate in that order.
   constexpr int kLocal = 64;
   Candidate local[kLocal];
   Buffer<Candidate> heap;
   Candidate *cand = local;
   long long m = 0, cap = kLocal;
-  bool oom = false, refused = false;
-  double w[3];
-  wrapped_centre(scene.box, centre, w);
-  double const err = screen_error(scene.box);
-  for_each_neighbour_cell(g, c, k, [&](long long cell, int const *wrap) noexcept {
-    for (long long b = scene.head[cell]; b >= 0; b = scene.next[b]) {
-      if (b == i || oom) continue;
-      if (image_apart(scene, w, b, wrap, rt + scene.radius[b], err)) continue;
-      double r[3];
-      double const *cb = scene.centres + 3 * b;
-      if (!(i < b ? pair_r12(scene.box, centre, cb, r) : pair_r12(scene.box, cb, centre, r))) {
-        refused = true;
-        continue;
-      }
-      if (spheres_apart(r, rt + scene.radius[b])) continue;
-      double const *qa = i < b ? q : scene.q + 6 * b;
-      double const *qb = i < b ? scene.q + 6 * b : q;
-      if (plane_separates(r, qa, qb, 0.0)) continue;
-      if (m == cap) {
-        if (!heap.reserve(2 * cap)) {
-          oom = true;
-          continue;
+  bool oom = false;
+  bool const walked = for_each_near(
+      scene, i, centre, (rt + scene.radius_max) * (1 + 4 * kMargin),
+      [&](long long b) noexcept { return rt + scene.radius[b]; },
+      [&](long long b, double const r[3], double reach) noexcept {
+        if (oom || spheres_apart(r, reach)) return;
+        double const *qa = i < b ? q : scene.q + 6 * b;
+        double const *qb = i < b ? scene.q + 6 * b : q;
+        if (plane_separates(r, qa, qb, 0.0)) return;
+        if (m == cap) {
+          if (!heap.reserve(2 * cap)) {
+            oom = true;
+            return;
+          }
+          if (cand == local) std::memcpy(heap.data, local, sizeof local);
+          cand = heap.data;
+          cap = heap.capacity;
         }
-        if (cand == local) std::memcpy(heap.data, local, sizeof local);
-        cand = heap.data;
-        cap = heap.capacity;
-      }
-      cand[m].i = b;  // the other particle
-      cand[m].j = b;
-      std::memcpy(cand[m].r, r, sizeof r);
-      ++m;
-    }
-  });
+        cand[m].i = b;  // the other particle
+        cand[m].j = b;
+        std::memcpy(cand[m].r, r, 3 * sizeof(double));
+        ++m;
+      });
   if (oom) return kNoMemory;
-  if (refused) return kInvalidArgument;
+  if (!walked) return kInvalidArgument;
   std::sort(cand, cand + m, [](Candidate const &x, Candidate const &y) { return x.j < y.j; });
   for (long long t = 0; t < m; ++t) {
     long long const b = cand[t].j;
@@ -1068,32 +1086,17 @@ Status scene_neighbours(Scene const &scene, long long i, double distance, long l
   if (i < 0 || i >= scene.n || !(distance >= 0.0) || !std::isfinite(distance) || capacity < 0)
     return kInvalidArgument;
   if (scene.box.periodic && distance > scene.box.max_reach) return kInvalidArgument;
-  CellGrid const &g = scene.grid;
-  double const *ci = scene.centres + 3 * i;
   double const d2 = distance * distance;
-  long long k[3], c[3];
-  for (int d = 0; d < 3; ++d) k[d] = stencil(g, d, distance * (1 + 4 * kMargin));
-  cell_coords(g, ci, c);
   Buffer<long long> found;
-  bool oom = false, refused = false;
-  double w[3];
-  wrapped_centre(scene.box, ci, w);
-  double const err = screen_error(scene.box);
-  for_each_neighbour_cell(g, c, k, [&](long long cell, int const *wrap) noexcept {
-    for (long long b = scene.head[cell]; b >= 0; b = scene.next[b]) {
-      if (b == i || oom) continue;
-      if (image_apart(scene, w, b, wrap, distance, err)) continue;
-      double r[3];
-      double const *cb = scene.centres + 3 * b;
-      if (!(i < b ? pair_r12(scene.box, ci, cb, r) : pair_r12(scene.box, cb, ci, r))) {
-        refused = true;
-        continue;
-      }
-      if (r[0] * r[0] + r[1] * r[1] + r[2] * r[2] < d2 && !found.push(b)) oom = true;
-    }
-  });
+  bool oom = false;
+  bool const walked = for_each_near(
+      scene, i, scene.centres + 3 * i, distance * (1 + 4 * kMargin),
+      [distance](long long) noexcept { return distance; },
+      [&](long long b, double const r[3], double) noexcept {
+        if (r[0] * r[0] + r[1] * r[1] + r[2] * r[2] < d2 && !found.push(b)) oom = true;
+      });
   if (oom) return kNoMemory;
-  if (refused) return kInvalidArgument;
+  if (!walked) return kInvalidArgument;
   std::sort(found.data, found.data + found.size);
   count = found.size;
   if (found.size > capacity) return kCapacity;
