@@ -644,7 +644,7 @@ PW85_API int pw85_scene_contact(long long n, double const *centres, double const
  * exact overlap predicate, so its verdict is that of pw85_scene_overlap()
  * on the pair (i, j). A configuration is used by one thread at a time when
  * it is changed (update, move); the other calls may run concurrently on
- * the same configuration. Memory: O(n), about 140 bytes per particle, and
+ * the same configuration. Memory: O(n), about 160 bytes per particle, and
  * a pairs query allocates O(n + pairs) more for its duration. */
 typedef struct pw85_configuration pw85_configuration;
 
