@@ -644,7 +644,7 @@ PW85_API int pw85_scene_contact(long long n, double const *centres, double const
  * exact overlap predicate, so its verdict is that of pw85_scene_overlap()
  * on the pair (i, j). A configuration is used by one thread at a time when
  * it is changed (update, move); the other calls may run concurrently on
- * the same configuration. Memory: O(n), about 140 bytes per particle, and
+ * the same configuration. Memory: O(n), about 160 bytes per particle, and
  * a pairs query allocates O(n + pairs) more for its duration. */
 typedef struct pw85_configuration pw85_configuration;
 
@@ -713,6 +713,24 @@ PW85_API int pw85_configuration_pairs(pw85_configuration const *configuration, d
 PW85_API int pw85_configuration_test_move(pw85_configuration const *configuration,
                                           long long i, double const centre[PW85_DIM],
                                           double const q[PW85_SYM], long long *j);
+
+/* The neighbours of particle i by centre distance: every j != i with
+ * r12 . r12 < distance^2 (computed in double), r12 = c_j - c_i of the pair
+ * (min(i, j), max(i, j)) or its image as pw85_configuration_pairs() takes
+ * it, in ascending j. A superset of the particles whose ellipsoids lie
+ * within a gap g of particle i's when distance >= R_i + R_max + g (R: the
+ * largest semi-axes); event-driven dynamics keeps such lists with a skin.
+ * *count receives their number; when it is <= capacity, j[0..*count-1]
+ * receive them. Cost: the cells within distance of particle i, no
+ * narrow phase. Returns PW85_OK, PW85_ERR_CAPACITY (*count set, nothing
+ * else written; capacity = 0 with j NULL asks for the count),
+ * PW85_ERR_INVALID_ARGUMENT (NULL pointer, i out of range, capacity < 0,
+ * distance negative or not finite, or with a box larger than
+ * min(Lx, Ly, Lz)/2 (less 1e-9 relative)) or PW85_ERR_NO_MEMORY, with
+ * nothing written. */
+PW85_API int pw85_configuration_neighbours(pw85_configuration const *configuration,
+                                           long long i, double distance, long long capacity,
+                                           long long *j, long long *count);
 
 /* Moves particle i to (centre, q), with no overlap test. Returns as
  * pw85_configuration_test_move(); on error the configuration is

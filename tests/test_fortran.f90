@@ -36,7 +36,7 @@ program test_fortran
   integer(c_long_long) :: ci(3), cj(3), count, jfound, bad
 
   write (*, '(a)') 'TAP version 13'
-  write (*, '(a)') '1..42'
+  write (*, '(a)') '1..45'
 
   ! Version: the loaded library and the module constant agree.
   version = pw85_version_string()
@@ -331,6 +331,20 @@ program test_fortran
                                     count=count)
   call check(status == PW85_OK .and. count == 0, &
              'pw85_configuration_pairs: no overlap after the move')
+  ! Neighbours by centre distance: particle 1 at |r12| from particle 0,
+  ! particle 2 at |(100, 100, 100)|.
+  status = pw85_configuration_neighbours(conf, 0_c_long_long, 1.01_c_double * norm2(r12), &
+                                         3_c_long_long, cj, count)
+  call check(status == PW85_OK .and. count == 1 .and. cj(1) == 1, &
+             'pw85_configuration_neighbours: particle 1 within 1.01 |r12| of particle 0')
+  status = pw85_configuration_neighbours(conf, 0_c_long_long, 0.99_c_double * norm2(r12), &
+                                         3_c_long_long, cj, count)
+  call check(status == PW85_OK .and. count == 0, &
+             'pw85_configuration_neighbours: none within 0.99 |r12|')
+  status = pw85_configuration_neighbours(conf, 0_c_long_long, 200.0_c_double, 0_c_long_long, &
+                                         count=count)
+  call check(status == PW85_ERR_CAPACITY .and. count == 2, &
+             'pw85_configuration_neighbours: capacity 0 gives the count')
   call pw85_configuration_destroy(conf)
 
   ! Main-program allocatables are not freed automatically at the end; free

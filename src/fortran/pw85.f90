@@ -544,6 +544,21 @@ module pw85
       integer(c_int) :: status
     end function pw85_configuration_test_move
 
+    ! int pw85_configuration_neighbours(pw85_configuration const *configuration,
+    !     long long i, double distance, long long capacity, long long *j,
+    !     long long *count)
+    function pw85_configuration_neighbours(configuration, i, distance, capacity, j, count) &
+        bind(C, name="pw85_configuration_neighbours") result(status)
+      import :: c_double, c_int, c_long_long, c_ptr
+      type(c_ptr), value :: configuration
+      integer(c_long_long), value :: i
+      real(c_double), value :: distance
+      integer(c_long_long), value :: capacity
+      integer(c_long_long), intent(out), optional :: j(*)
+      integer(c_long_long), intent(out) :: count
+      integer(c_int) :: status
+    end function pw85_configuration_neighbours
+
     ! int pw85_configuration_move(pw85_configuration *configuration,
     !     long long i, double const centre[3], double const q[6])
     function pw85_configuration_move(configuration, i, centre, q) &
