@@ -10,11 +10,16 @@ For every call, set and class it runs trace_pairs (bench/trace_pairs.cpp)
 under gdb with LD_BIND_NOW=1, single-steps traced_call on each of K pairs
 (the pairs calls: one call on M pairs) and records the dynamic instruction
 trace: every instruction executed, in order, with the branches actually
-taken. Each trace is given to llvm-mca-14 as one block (-iterations=20) for
+taken. Each trace is given to llvm-mca-14 as one block (-iterations=20, 3
+for traces over 6,667 instructions) for
 every CPU model: cycles per iteration = modelled cycles of the call when it
 is repeated back to back with its branches predicted and its data in L1
-(llvm-mca models neither mispredictions nor cache misses, and treats
-`call`/`ret`/jumps as plain instructions). Cycles per pair = mean over the K
+(llvm-mca models neither mispredictions nor cache misses nor the front end;
+calls and returns are left out of the trace, since llvm-mca would give each
+call 100 cycles of latency; jumps stay as plain instructions). LLVM 14
+has four scheduling models among these CPUs: Skylake-SP (skylake-avx512,
+and sapphirerapids, which has no model of its own there), Ice Lake
+(icelake-server, rocketlake), Haswell and Zen 3. Cycles per pair = mean over the K
 traces (divided by M for the pairs calls). --path v3 clears the x86-64-v4
 bit of the library's CPU-feature word (GCC's __cpu_features2, byte 8, bit 2,
 as its __builtin_cpu_supports("x86-64-v4") tests it) after start-up, so the
@@ -40,7 +45,7 @@ if CLEAR_V4:
     addr = int(gdb.parse_and_eval("(unsigned long)&'__cpu_features2'"))
     b = int(gdb.parse_and_eval("*(unsigned char*)%d" % (addr + 8)))
     gdb.execute("set var *(unsigned char*)%d = %d" % (addr + 8, b & ~4))
-gdb.execute("break traced_call")
+gdb.execute("break *traced_call")
 gdb.execute("continue")
 traces = []
 seen = {}
@@ -67,6 +72,7 @@ gdb.execute("kill")
 '''
 
 
+CALL_RET = re.compile(r"^(call|ret)")
 AVX512 = re.compile(r"zmm|%k[0-7]|[xy]mm(1[6-9]|2[0-9]|3[01])\b|\{")
 
 
@@ -103,10 +109,14 @@ def record(binary, call, set_name, cls, count, clear_v4):
                     text[int(pc)] = clean(ins)
                 elif line.startswith("T "):
                     traces.append([int(p) for p in line.split()[1:]])
-        return [[text[p] for p in t] for t in traces]
+        # llvm-mca models a call as 100 cycles of latency: calls and returns
+        # are left out (their stack-pointer updates do not matter here).
+        return [[text[p] for p in t if not CALL_RET.match(text[p])] for t in traces]
 
 
-def mca(instructions, cpu, iterations=20):
+def mca(instructions, cpu):
+    # Enough iterations for the steady state, fewer for long traces.
+    iterations = max(3, min(20, 20000 // max(1, len(instructions))))
     src = "\n".join(instructions) + "\n"
     r = subprocess.run(["llvm-mca-14", "-mtriple=x86_64-unknown-linux-gnu", "-mcpu=" + cpu,
                         "-iterations=%d" % iterations],
