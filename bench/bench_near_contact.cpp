@@ -309,6 +309,17 @@ struct Timed {
   Timed const *one_pair = nullptr;  // the one-pair loop on the same set
 };
 
+// The loop of pw85_overlap over the set.
+Timed one_pair_loop(PairSet const &s) {
+  Timed one{s.name, "pw85_overlap", s.cls, &s, nullptr, {}, {}};
+  long long const m = s.size();
+  one.pass = [&s, m](std::vector<int> &v) {
+    for (long long k = 0; k < m; ++k)
+      v[k] = pw85_overlap(&s.r12[3 * k], &s.q1[6 * k], &s.q2[6 * k]);
+  };
+  return one;
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
@@ -396,11 +407,7 @@ int main(int argc, char **argv) {
   std::vector<size_t> random_row(4 * 2);  // index in timed of (class, call) on random/*
   for (PairSet const &s : sets) {
     long long const m = s.size();
-    Timed one{s.name, "pw85_overlap", s.cls, &s, nullptr, {}, {}};
-    one.pass = [&s, m](std::vector<int> &v) {
-      for (long long k = 0; k < m; ++k)
-        v[k] = pw85_overlap(&s.r12[3 * k], &s.q1[6 * k], &s.q2[6 * k]);
-    };
+    Timed const one = one_pair_loop(s);
     Timed batch{s.name, "pw85_overlap_pairs", s.cls, &s, nullptr, {}, {}};
     batch.pass = [&s, m](std::vector<int> &v) {
       pw85_overlap_pairs(m, s.r12.data(), s.q1.data(), s.q2.data(), v.data(), nullptr, 1);
@@ -439,15 +446,7 @@ int main(int argc, char **argv) {
       if (sub.size()) decades.push_back(std::move(sub));
     }
   }
-  for (PairSet const &s : decades) {
-    long long const m = s.size();
-    Timed one{s.name, "pw85_overlap", s.cls, &s, nullptr, {}, {}};
-    one.pass = [&s, m](std::vector<int> &v) {
-      for (long long k = 0; k < m; ++k)
-        v[k] = pw85_overlap(&s.r12[3 * k], &s.q1[6 * k], &s.q2[6 * k]);
-    };
-    timed.push_back(one);
-  }
+  for (PairSet const &s : decades) timed.push_back(one_pair_loop(s));
   for (Timed &t : timed) {
     t.baseline = &timed[random_row[2 * t.cls + (t.call == "pw85_overlap" ? 0 : 1)]];
     t.verdict.assign(t.pairs->size(), -99);
