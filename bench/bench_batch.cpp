@@ -1,5 +1,5 @@
 // Cost per pair of the batch calls over per-pair arrays and scenes
-// (docs/batch.md, docs/guide.md), against the loop of one-pair calls over
+// (docs/performance.md, "Batch calls"), against the loop of one-pair calls over
 // the same pairs, timed in the same repetitions.
 // NOT a test: built by meson, never run by `meson test`, not installed.
 //
@@ -33,7 +33,7 @@
 // and split in two halves on two std::threads. --callgrind C F: only function F of
 // class C (0 loop pw85_overlap, 1 pw85_overlap_pairs, 2 loop DEFAULT, 3
 // pw85_contact_function_pairs DEFAULT) once over its --class-n pairs, in
-// run_once, for instruction counts (docs/batch.md):
+// run_once, for instruction counts:
 //   valgrind --tool=callgrind --toggle-collect='*run_once*'
 //       build/bench/bench_batch --class-n 20000 --callgrind C F x.csv
 #include <algorithm>

@@ -6,7 +6,10 @@
  * For each of the four semi-axis classes, n trajectories: 60 % random
  * (rotations up to half a turn), 20 % grazing (translations tangent to the
  * level set mu^2 = 1 + delta, delta = +-1e-6, +-1e-9, +-1e-12), 20 % spinning
- * (2-5 turns of each ellipsoid within the horizon). Counts (ct_verdict of
+ * (2-5 turns of each ellipsoid within the horizon); then n / 5 rotating
+ * grazes (kind rotgraze: a stationary minimum of mu^2 at 1 + delta,
+ * delta = +-1e-6, +-1e-9, +-1e-12, while each ellipsoid turns 0.5-3 times).
+ * Counts (ct_verdict of
  * tests/ct_reference.h, tol = 1e-9 t_max):
  *   missed: the reference finds mu^2 < 1 - 1e-12 at t_a and the library
  *           reports no contact or a time after t_a + tol;
@@ -19,13 +22,17 @@
  *   failed: a status other than PW85_OK.
  * err: |t - t_c| / t_max over the trajectories with mu^2 < 1 - 1e-12
  * somewhere; err_g12: the same over the grazing trajectories tangent to
- * mu^2 = 1 - 1e-12 (the crossing of 1 least determined). Evaluations: those of
+ * mu^2 = 1 - 1e-12 (the crossing of 1 least determined; rotating grazes of
+ * minimum 1 - 1e-12 for rotgraze). Evaluations: those of
  * pw85_contact_time_ex. ns per call: thread CPU time of one pass over the
  * trajectories of a kind, median over the repetitions (spread: min-max); baseline
  * in the same passes: one PW85_METHOD_DEFAULT evaluation at t = 0 per
  * trajectory (ns_default), and the cost per evaluation over it.
  *
- *   build/bench/bench_contact_time [--verbose] [--class C] [--n 1000] [--reps 5] [--seed 42] > docs/bench_contact_time.csv
+ *   build/bench/bench_contact_time [--verbose] [--still] [--class C] [--n 1000] [--reps 5] [--seed 42] > docs/bench_contact_time.csv
+ *
+ * --still: the same trajectories with w1 = w2 = 0 (translation only; the
+ * kinds keep their names).
  *
  * The table goes to stderr, the CSV to stdout. Benchmark only. */
 #define _POSIX_C_SOURCE 199309L
@@ -54,13 +61,14 @@ static double median(double *v, int n) {
 
 static volatile double sink;
 
-static const char *kind_name[CT_KINDS] = {"random", "grazing", "spinning"};
+static const char *kind_name[CT_KINDS] = {"random", "grazing", "spinning", "rotgraze"};
 
 int main(int argc, char **argv) {
-  int n = 1000, reps = 5, verbose = 0, only = -1;
+  int n = 1000, reps = 5, verbose = 0, only = -1, still = 0;
   unsigned long long seed = 42;
   for (int i = 1; i < argc; i += 2) {
     if (!strcmp(argv[i], "--verbose")) { verbose = 1; i--; continue; }
+    if (!strcmp(argv[i], "--still")) { still = 1; i--; continue; }
     if (i + 1 >= argc) { fprintf(stderr, "option %s needs a value\n", argv[i]); return 2; }
     if (!strcmp(argv[i], "--n")) n = atoi(argv[i + 1]);
     else if (!strcmp(argv[i], "--reps")) reps = atoi(argv[i + 1]);
@@ -76,23 +84,31 @@ int main(int argc, char **argv) {
   fprintf(stderr, "%-5s %-8s %6s %6s %6s %5s %5s %6s %9s %9s %9s %6s %7s %9s %9s\n", "class",
           "kind", "n", "contact", "missed", "early", "false", "failed", "max_err", "med_err",
           "err_g12", "med_ev", "max_ev", "ns/call", "spread");
-  ct_traj *tr = malloc(sizeof *tr * n);
-  double *t = malloc(sizeof *t * n), *ev = malloc(sizeof *ev * n), *err = malloc(sizeof *err * n);
-  double *rev = malloc(sizeof *rev * n), *ns = malloc(sizeof *ns * reps);
-  int *kind = malloc(sizeof *kind * n), *st = malloc(sizeof *st * n);
+  int const nr = n / 5, nt = n + nr;  /* n of the first three kinds, then n / 5 rotating grazes */
+  ct_traj *tr = malloc(sizeof *tr * nt);
+  double *t = malloc(sizeof *t * nt), *ev = malloc(sizeof *ev * nt), *err = malloc(sizeof *err * nt);
+  double *rev = malloc(sizeof *rev * nt), *ns = malloc(sizeof *ns * reps);
+  int *kind = malloc(sizeof *kind * nt), *st = malloc(sizeof *st * nt);
   for (int c = 0; c < 4; c++) {
     if (only >= 0 && c != only) continue;
-    ct_rng g = {seed * 4 + c};
+    ct_rng g = {seed * 4 + c}, gr = {seed * 4 + c + 1000};
     for (int i = 0; i < n; i++) {
       kind[i] = i % 5 < 3 ? CT_RANDOM : (i % 5 == 3 ? CT_GRAZING : CT_SPINNING);
       ct_make(&g, lo[c], hi[c], kind[i], i / 5, &tr[i]);
     }
+    for (int i = n; i < nt; i++) {
+      kind[i] = CT_ROTGRAZE;
+      ct_make(&gr, lo[c], hi[c], CT_ROTGRAZE, i - n, &tr[i]);
+    }
+    if (still) /* the same trajectories without rotation */
+      for (int i = 0; i < nt; i++)
+        for (int j = 0; j < 3; j++) tr[i].w1[j] = tr[i].w2[j] = 0.0;
     double sum = 0, nsk[CT_KINDS][64], nsd[64];
     for (int r = 0; r < reps; r++) {
       for (int k = 0; k < CT_KINDS; k++) {
         double const t0 = thread_ns();
         int cnt = 0;
-        for (int i = 0; i < n; i++) {
+        for (int i = 0; i < nt; i++) {
           if (kind[i] != k) continue;
           int e;
           st[i] = pw85_contact_time_ex(tr[i].r0, tr[i].v, tr[i].q1, tr[i].w1, tr[i].q2, tr[i].w2,
@@ -115,8 +131,8 @@ int main(int argc, char **argv) {
     double const nsdef = median(nsd, reps);
     for (int k = 0; k < CT_KINDS; k++) {
       int cnt = 0, contacts = 0, missed = 0, early = 0, falsec = 0, failed = 0, nerr = 0;
-      double maxerr = 0, maxerr_g12 = 0, evk[n], revk[n];
-      for (int i = 0; i < n; i++) {
+      double maxerr = 0, maxerr_g12 = 0, evk[nt], revk[nt];
+      for (int i = 0; i < nt; i++) {
         if (kind[i] != k) continue;
         ct_ref ref;
         ct_reference(&tr[i], &ref);
@@ -142,6 +158,7 @@ int main(int argc, char **argv) {
           err[nerr++] = e;
           if (e > maxerr) maxerr = e;
           if (k == CT_GRAZING && (i / 5) % 6 == 5 && e > maxerr_g12) maxerr_g12 = e;
+          if (k == CT_ROTGRAZE && (i - n) % 6 == 5 && e > maxerr_g12) maxerr_g12 = e;
         }
       }
       double const mederr = nerr ? median(err, nerr) : 0;

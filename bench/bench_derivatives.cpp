@@ -1,6 +1,6 @@
 // Cost of pw85_contact_derivatives against one PW85_METHOD_DEFAULT
 // pw85_contact_function_method call on the same pairs in the same run
-// (docs/derivatives.md, "Cost"). Pairs of bench_contact's four semi-axis
+// (docs/performance.md, "Derivatives"). Pairs of bench_contact's four semi-axis
 // classes (bench_common.hpp: semi-axes log-uniform in [0.5, 2], [0.1, 10],
 // [0.01, 100], [0.001, 1000], random orientations, centre distances from deep
 // overlap to 3.2 times the reach). Each repetition times one pass of each

@@ -784,25 +784,32 @@ PW85_API int pw85_scene_contact_derivatives(long long n, double const *centres,
  * constant angular velocity w_i: Q_i(t) = R_i(t) Q_i R_i(t)^T,
  * R_i(t) = exp(t [w_i]x). Writes to *t the first time t_c in [0, t_max] at
  * which mu^2(t) <= 1 (0 when the pair overlaps or touches at t = 0), or
- * +INFINITY when there is none. Certified: *t is never later than the
- * first t with mu^2(t) < 1 - 2.3e-13; a contact at *t > 0 is reported only
- * where mu^2 + 1e-14 <= 1 was computed, so never when mu^2 > 1 on
- * (0, t_max] and mu^2(0) > 1 + 1e-14; trajectories whose minimum of mu^2
- * lies in [1 - 2.3e-13, 1] may go either way. *t is a crossing of
- * mu^2 = 1, refined beyond double precision where needed (measured within
- * 6e-12 t_max of t_c at grazing crossings of 1 - 1e-12, 2.5e-11 with the
- * rounding of Q_i(t) when rotating; docs/contact_time.md). Returns PW85_OK,
+ * +INFINITY when there is none. Certified for the exact motion of the
+ * double inputs, rotation included (R_i(t) and every product with Q_i(t)
+ * in double-double from the inputs, mu^2 enclosed where a decision needs
+ * it; docs/contact_time.md): *t is never later than the first t with
+ * mu^2(t) < 1 - 2.3e-13; a contact at *t > 0 is reported only where
+ * mu^2 <= 1 was certified, so never when mu^2 > 1 on (0, t_max];
+ * trajectories whose minimum of mu^2 lies in [1 - 2.3e-13, 1] may go either
+ * way. *t lies in a certified bracket of width 1e-10 t_max around a
+ * crossing of mu^2 = 1: never earlier than the first crossing by more than
+ * that, and within it of the first crossing, or of the one that starts the
+ * first dip below 1 - 2.3e-13. A spin about an axis of symmetry (Q_i(t)
+ * constant) costs no evaluations. Returns PW85_OK,
  * PW85_ERR_INVALID_ARGUMENT (NULL, NaN or infinite value, t_max <= 0, or
  * r12 + t v12 or t w_i overflowing within the horizon; *t is NaN),
- * PW85_ERR_NOT_SPD (q1 or q2 not positive definite; *t is NaN) or
+ * PW85_ERR_NOT_SPD (q1 or q2 not positive definite; *t is NaN),
  * PW85_ERR_NO_CONVERGENCE (PW85_CONTACT_TIME_MAX_EVAL evaluations spent, an
- * evaluation failed, or no certified step can advance t: *t is the time up
- * to which mu^2 >= 1 - 2.3e-13 is certified on [0, *t]; pairs at |r12| >=
- * 2^997 times the largest semi-axis: NO_CONVERGENCE with *t = 0). Limit of
- * the certificate: a contact shorter than the spacing of doubles around
- * t_c (ulp(t_c)) can be stepped over, giving +INFINITY with PW85_OK (unit
- * spheres head-on at unit speed from |r12| ~ 2^57; docs/contact_time.md,
- * "Limits"). */
+ * evaluation failed, or no certified step can advance t; pairs at |r12| >=
+ * 2^997 times the largest semi-axis: NO_CONVERGENCE with *t = 0; *t is
+ * the time up to which mu^2 >= 1 - 2.3e-13 is certified on [0, *t]) or
+ * PW85_ERR_INACCURATE (outside the certified domain, decided from the
+ * inputs alone before any evaluation, the same on every CPU: a bound of
+ * the semi-axis ratio above 1e7 in either ellipsoid, rotating or not, or
+ * t_max |w_i| > 2^50; *t = 0). Limit of the certificate:
+ * a contact shorter than the spacing of doubles around t_c (ulp(t_c)) can
+ * be stepped over, giving +INFINITY with PW85_OK (unit spheres head-on at
+ * unit speed from |r12| ~ 2^57; docs/contact_time.md, "Limits"). */
 PW85_API int pw85_contact_time(double const r12[PW85_DIM], double const v12[PW85_DIM],
                                double const q1[PW85_SYM], double const w1[PW85_DIM],
                                double const q2[PW85_SYM], double const w2[PW85_DIM],

@@ -10,7 +10,8 @@
  * trajectory is sampled on a uniform grid (ct_grid_points), every local
  * minimum of the samples is refined by golden-section search, and each
  * level crossing is located by bisection. Also the generators of the
- * trajectories (random, grazing, rotating) of the test and the benchmark. */
+ * trajectories (random, grazing, spinning, rotating grazes) of the test
+ * and the benchmark. */
 #ifndef PW85_CT_REFERENCE_H
 #define PW85_CT_REFERENCE_H
 
@@ -343,7 +344,7 @@ static inline void ct_ellipsoid(ct_rng *g, double lo, double hi, double q[6], do
 }
 
 /* Kinds of trajectories. */
-enum { CT_RANDOM, CT_GRAZING, CT_SPINNING, CT_KINDS };
+enum { CT_RANDOM, CT_GRAZING, CT_SPINNING, CT_ROTGRAZE, CT_KINDS };
 
 /* A trajectory of class [lo, hi], t_max = 1:
  *  - CT_RANDOM: centres 1.1-3 bounding radii apart, heading towards each
@@ -352,7 +353,9 @@ enum { CT_RANDOM, CT_GRAZING, CT_SPINNING, CT_KINDS };
  *  - CT_GRAZING (translation): the line r* + t v tangent to the level set
  *    mu^2 = 1 + delta at r*, touching it at t = 0.5, delta = +-1e-6,
  *    +-1e-9, +-1e-12 (k selects);
- *  - CT_SPINNING: as CT_RANDOM with 2-5 turns of each ellipsoid. */
+ *  - CT_SPINNING: as CT_RANDOM with 2-5 turns of each ellipsoid;
+ *  - CT_ROTGRAZE: a stationary minimum of mu^2 at 1 + delta (as
+ *    CT_GRAZING) while each body turns 0.5-3 times (ct_rotgraze). */
 /* The translation of CT_GRAZING for the ellipsoids q1, q2 (largest
  * semi-axes a1, a2), d a random unit vector: tangent to mu^2 = 1 + delta. */
 static inline void ct_graze(ct_rng *g, double a1, double a2, const double d[3], double delta,
@@ -378,6 +381,51 @@ static inline void ct_graze(ct_rng *g, double a1, double a2, const double d[3], 
   }
 }
 
+/* CT_ROTGRAZE: each body turning 0.5-3 times over t_max = 1, the centre
+ * offset passing at t = 0.5 through r* with mu^2(r*) = 1 + delta at a
+ * stationary point of mu^2(t): v = (a random part perpendicular to
+ * s = Q(lambda)^{-1} r*, speed 2-6 (a1 + a2)) + alpha s / |s|^2,
+ * alpha = (1 - lambda) s.(w1 x Q1 s) + lambda s.(w2 x Q2 s), so that
+ * dmu^2/dt = lambda (1 - lambda) (2 s.v - 2 alpha) = 0 there (Q_i at t = 0.5,
+ * long double). The inputs are rounded to double: the exact minimum moves
+ * (the reference finds it). */
+static inline void ct_rotgraze(ct_rng *g, double a1, double a2, const double d[3], double delta,
+                               ct_traj *tr) {
+  double u[3], e[3];
+  for (int b = 0; b < 2; b++) {
+    double const turns = 0.5 + 2.5 * ct_uniform(g);
+    ct_unit(g, u);
+    for (int i = 0; i < 3; i++) (b ? tr->w2 : tr->w1)[i] = 2 * CT_PI * turns * u[i];
+  }
+  ctr_real A[6], B[6], R[3] = {d[0], d[1], d[2]}, lam = 0.5L, s[3], Q[6], As[3], Bs[3], c[3];
+  ctr_rotate(tr->q1, tr->w1, 0.5L, A);
+  ctr_rotate(tr->q2, tr->w2, 0.5L, B);
+  ctr_real const m2 = ctr_mu2(R, A, B, &lam);
+  ctr_real const sc = sqrtl((1.0L + delta) / m2);
+  for (int i = 0; i < 3; i++) R[i] *= sc;
+  ctr_mu2(R, A, B, &lam);
+  for (int i = 0; i < 6; i++) Q[i] = (1 - lam) * A[i] + lam * B[i];
+  ctr_solve(Q, R, s);
+  ctr_mul(A, s, As);
+  ctr_mul(B, s, Bs);
+  ctr_real alpha = 0;
+  ctr_real const w1[3] = {tr->w1[0], tr->w1[1], tr->w1[2]}, w2[3] = {tr->w2[0], tr->w2[1], tr->w2[2]};
+  c[0] = w1[1] * As[2] - w1[2] * As[1]; c[1] = w1[2] * As[0] - w1[0] * As[2]; c[2] = w1[0] * As[1] - w1[1] * As[0];
+  alpha += (1 - lam) * ctr_dot(s, c);
+  c[0] = w2[1] * Bs[2] - w2[2] * Bs[1]; c[1] = w2[2] * Bs[0] - w2[0] * Bs[2]; c[2] = w2[0] * Bs[1] - w2[1] * Bs[0];
+  alpha += lam * ctr_dot(s, c);
+  ctr_real const ss = ctr_dot(s, s);
+  ct_unit(g, e);
+  ctr_real es = (e[0] * s[0] + e[1] * s[1] + e[2] * s[2]) / ss, p[3], pn = 0;
+  for (int i = 0; i < 3; i++) { p[i] = e[i] - es * s[i]; pn += p[i] * p[i]; }
+  pn = sqrtl(pn);
+  double const speed = (a1 + a2) * (2.0 + 4.0 * ct_uniform(g));
+  for (int i = 0; i < 3; i++) {
+    tr->v[i] = (double)(speed * p[i] / pn + alpha * s[i] / ss);
+    tr->r0[i] = (double)(R[i] - 0.5L * tr->v[i]);
+  }
+}
+
 static inline void ct_make(ct_rng *g, double lo, double hi, int kind, int k, ct_traj *tr) {
   double a1, a2, d[3], e[3];
   ct_ellipsoid(g, lo, hi, tr->q1, &a1);
@@ -385,9 +433,13 @@ static inline void ct_make(ct_rng *g, double lo, double hi, int kind, int k, ct_
   tr->t_max = 1.0;
   for (int i = 0; i < 3; i++) tr->w1[i] = tr->w2[i] = 0.0;
   ct_unit(g, d);
+  static const double deltas[6] = {1e-6, -1e-6, 1e-9, -1e-9, 1e-12, -1e-12};
   if (kind == CT_GRAZING) {
-    static const double deltas[6] = {1e-6, -1e-6, 1e-9, -1e-9, 1e-12, -1e-12};
     ct_graze(g, a1, a2, d, deltas[k % 6], tr);
+    return;
+  }
+  if (kind == CT_ROTGRAZE) {
+    ct_rotgraze(g, a1, a2, d, deltas[k % 6], tr);
     return;
   }
   double dist = (a1 + a2) * (1.1 + 1.9 * ct_uniform(g));

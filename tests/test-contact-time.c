@@ -4,7 +4,10 @@
  * |r12 + t v12| = a1 + a2, in long double), that of two identical
  * ellipsoids spinning together (closed form below), and for random,
  * grazing and spinning trajectories of the four semi-axis classes the
- * sampled long-double / __float128 reference of tests/ct_reference.h. */
+ * sampled long-double / __float128 reference of tests/ct_reference.h;
+ * rotating trajectories against the mpmath references of
+ * tests/ct_rotating_reference.h (data/generate_ct_rotating.py: exact
+ * rotation of the double inputs at 40 digits). */
 #include <float.h>
 #include <math.h>
 #include <pw85.h>
@@ -12,6 +15,20 @@
 
 #include "ct_reference.h"
 #include "testutil.h"
+
+/* One rotating trajectory and its mpmath reference (t_max = 1): kind 0 a
+ * stationary minimum of mu^2 at 1 + delta while spinning, 1 random (up to a
+ * turn), 2 spinning (2-5 turns), 3 the class-2 false contact reported
+ * against an earlier version; mu0, min: mu^2(0) - 1 and the smallest
+ * mu^2 - 1 (at t_min; exact only when below 1e-2); t_c the first crossing of
+ * mu^2 = 1, t_a the first time with mu^2 < 1 - 2.3e-13, t_d the last
+ * crossing of 1 at or before t_a (INFINITY when none). */
+typedef struct {
+  int cls, kind;
+  double delta, r0[3], v[3], q1[6], w1[3], q2[6], w2[3], t_max;
+  double mu0, min, t_min, t_c, t_d, t_a;
+} ct_rot_case;
+#include "ct_rotating_reference.h"
 
 static void bad_one(double const r[3], double const v[3], double const q1[6], double const w1[3],
                     double const q2[6], double const w2[3], double t_max, int expected) {
@@ -228,6 +245,51 @@ static void test_steep_crossing(void) {
   g_assert_cmpint(ct_verdict(&tr, &ref, t), ==, 0);
   g_assert_true(ref.t[0] != INFINITY);
   g_assert_cmpint(ev, <, 1000);
+  /* A spinning class-3 pair (trajectory 1095 of class 3 in the slow mode
+   * of /pw85_contact_time/reference) whose crossing falls within one ulp
+   * of t: the refinement's probe across Newton's root would leave the
+   * bracket; it is placed on the near side and closes it (T8). */
+  ct_traj const tr2 = {{-0x1.472f5e5798ea2p+8, 0x1.5c1e25048fd69p+10, -0x1.ff6208fd7c24p+7},
+                       {0x1.e8753512d88bcp+9, -0x1.e314ee1709f53p+11, 0x1.98730919b1efcp+9},
+                       {0x1.63a030dfa4a49p+17, -0x1.74fb6f1e02b0ep+16, 0x1.1987b7fc1b61cp+18,
+                        0x1.872f8b1874c27p+15, -0x1.2745303b37c67p+17, 0x1.bdbec7ed0501fp+18},
+                       {-0x1.4ea69f55d53e7p-2, 0x1.48462e778a351p+0, -0x1.793e101fb46dap-1},
+                       {0x1.f33144c78550bp+8, 0x1.765806332e1dp+10, -0x1.4e7f7e0b78f31p+13,
+                        0x1.18b877c47693ep+12, -0x1.f5ae062f993c2p+14, 0x1.c047a5987a318p+17},
+                       {-0x1.7cf0ff7547645p-1, -0x1.1bb23fcf3ec0cp+0, 0x1.f144b01fe7a26p+0},
+                       1.0};
+  g_assert_cmpint(pw85_contact_time_ex(tr2.r0, tr2.v, tr2.q1, tr2.w1, tr2.q2, tr2.w2, tr2.t_max, &t, &ev), ==, PW85_OK);
+  ct_reference(&tr2, &ref);
+  g_assert_true(ref.t[1] != INFINITY);
+  g_assert_cmpint(ct_verdict(&tr2, &ref, t), ==, 0);
+  g_assert_cmpfloat(fabs(t - ref.t[1]), <=, 1e-10);
+}
+
+/* The domain of the certificate is decided from the inputs before any
+ * evaluation: a semi-axis ratio above 1e7 (here 1e8, translation only and
+ * with a spinning sphere) gives PW85_ERR_INACCURATE with *t = 0 and no
+ * evaluation; at 1e6 the same approach is answered: the rod (semi-axes 1,
+ * 1e-6, 1e-6 along x, y, z) meets the unit sphere tip-on at t = 3. */
+static void test_domain(void) {
+  double const z[3] = {0, 0, 0}, w[3] = {0, 0, 1}, ball[6] = {1, 0, 0, 1, 0, 1};
+  double const r[3] = {5, 0, 0}, v[3] = {-1, 0, 0};
+  for (int k = 0; k < 2; k++) {
+    double const thin = k == 0 ? 1e-8 : 1e-6;
+    double const rod[6] = {1, 0, 0, thin * thin, 0, thin * thin};
+    for (int spin = 0; spin < 2; spin++) {
+      double t = -1;
+      int ev = -1;
+      int const st = pw85_contact_time_ex(r, v, rod, z, ball, spin ? w : z, 10.0, &t, &ev);
+      if (k == 0) {
+        g_assert_cmpint(st, ==, PW85_ERR_INACCURATE);
+        g_assert_cmpfloat(t, ==, 0.0);
+        g_assert_cmpint(ev, ==, 0);
+      } else {
+        g_assert_cmpint(st, ==, PW85_OK);
+        g_assert_cmpfloat(fabs(t - 3.0), <=, 1e-12);
+      }
+    }
+  }
 }
 
 /* The rate of the event-driven recipe (docs/contact_time.md): dmu^2/dt =
@@ -462,6 +524,118 @@ static void test_limits(void) {
   }
 }
 
+/* Rotating trajectories against the mpmath references (the guarantees of
+ * include/pw85.h, tol = 1e-10 t_max, the width of the certified bracket):
+ * PW85_OK; no contact where the exact minimum of mu^2 is above 1 (false);
+ * never after the first time with mu^2 < 1 - 2.3e-13 (late; +INFINITY
+ * there counts as late); never before the first crossing of 1 by more than
+ * tol (early); where mu^2 goes below 1 - 2.3e-13, within tol of a crossing
+ * of 1: the first one, or the one that starts the dip below 1 - 2.3e-13
+ * (error). */
+static void test_rotating_reference(void) {
+  int n[4] = {0}, failed[4] = {0}, falsec[4] = {0}, late[4] = {0}, early[4] = {0},
+      inexact[4] = {0}, contacts[4] = {0}, grazes[4] = {0}, issue = 0;
+  double max_err[4] = {0}, max_ev[4] = {0}, sum_ev[4] = {0};
+  for (int k = 0; k < ct_rot_count; k++) {
+    ct_rot_case const *c = &ct_rot_cases[k];
+    double const tol = 1e-10 * c->t_max;
+    double t;
+    int ev;
+    int const st = pw85_contact_time_ex(c->r0, c->v, c->q1, c->w1, c->q2, c->w2, c->t_max, &t, &ev);
+    int const i = c->cls;
+    n[i]++;
+    grazes[i] += c->kind == 0;
+    sum_ev[i] += ev;
+    if (ev > max_ev[i]) max_ev[i] = ev;
+    if (c->kind == 3) {  /* the reported false contact: min 1 + 9.94e-14 */
+      g_assert_cmpfloat(c->min, >, 9e-14);
+      g_assert_cmpint(st, ==, PW85_OK);
+      g_assert_true(isinf(t) && t > 0);
+      issue++;
+    }
+    if (st != PW85_OK) {
+      failed[i]++;
+      if (g_test_verbose()) g_test_message("case %d (class %d): status %d", k, i, st);
+      continue;
+    }
+    int bad = 0;
+    if (isfinite(t) && c->min > 0) falsec[i]++, bad = 1;
+    if (isfinite(c->t_a) && !(t <= nextafter(c->t_a, INFINITY))) late[i]++, bad = 1;
+    if (isfinite(t) && isfinite(c->t_c) && t < c->t_c - tol) early[i]++, bad = 1;
+    if (isfinite(c->t_a) && isfinite(t)) {
+      contacts[i]++;
+      double const e = fmin(fabs(t - c->t_c), fabs(t - c->t_d)) / c->t_max;
+      if (e > max_err[i]) max_err[i] = e;
+      if (!(e <= 1e-10)) inexact[i]++, bad = 1;
+    }
+    if (bad && g_test_verbose())
+      g_test_message("case %d (class %d, kind %d, delta %g): t %.17g, t_c %.17g, t_a %.17g, "
+                     "min %g", k, i, c->kind, c->delta, t, c->t_c, c->t_a, c->min);
+  }
+  for (int i = 0; i < 4; i++) {
+    if (g_test_verbose())
+      g_test_message("class %d: %d trajectories (%d grazes), %d contacts below the band, %d failed, "
+                     "%d false, %d late, %d early, %d beyond 1e-10; max error %.3g, evaluations "
+                     "mean %.0f max %.0f", i, n[i], grazes[i], contacts[i], failed[i], falsec[i],
+                     late[i], early[i], inexact[i], max_err[i], sum_ev[i] / n[i], max_ev[i]);
+    g_assert_cmpint(n[i], >=, 200);
+    g_assert_cmpint(failed[i], ==, 0);
+    g_assert_cmpint(falsec[i], ==, 0);
+    g_assert_cmpint(late[i], ==, 0);
+    g_assert_cmpint(early[i], ==, 0);
+    g_assert_cmpint(inexact[i], ==, 0);
+    g_assert_cmpint(contacts[i], >=, 20);
+  }
+  g_assert_cmpint(issue, ==, 1);
+}
+
+/* A spin about an axis of symmetry leaves Q(t) constant: the rate bounds
+ * come from ||[W, Q]|| (T3'), so the cost does not grow with |w|. A rod
+ * (semi-axes 10, 1, 1) spinning about its long axis approaches a unit
+ * sphere head-on (contact at t = 3, the same as without spin), along the
+ * coordinate axes and turned by a random rotation (then Q and w are
+ * rounded: ||[W, Q]|| ~ u |w| |Q|). */
+static void test_symmetric_spin(void) {
+  double const radii[3] = {10, 1, 1}, ident[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  double rod[6], ball[6], z[3] = {0, 0, 0};
+  make_q(radii, ident, rod);
+  sphere_q(1.0, ball);
+  GRand *rng = g_rand_new_with_seed(5405);
+  for (int turned = 0; turned < 2; turned++) {
+    double G[9];
+    if (turned) random_axes(rng, G);
+    else memcpy(G, ident, sizeof G);
+    double q[6], r[3], v[3];
+    make_q(radii, G, q);
+    /* body axes: rows of G (make_q); approach along the second one */
+    for (int i = 0; i < 3; i++) {
+      r[i] = 5 * G[3 + i];
+      v[i] = -G[3 + i];
+    }
+    double t0;
+    g_assert_cmpint(pw85_contact_time(r, v, q, z, ball, z, 10.0, &t0), ==, PW85_OK);
+    g_assert_cmpfloat(fabs(t0 - 3.0), <=, 1e-12);
+    for (double wn = 1.0; wn <= 1e10; wn *= 10) {
+      double w[3], t;
+      int ev;
+      for (int i = 0; i < 3; i++) w[i] = wn * G[i];
+      g_assert_cmpint(pw85_contact_time_ex(r, v, q, w, ball, z, 10.0, &t, &ev), ==, PW85_OK);
+      if (g_test_verbose())
+        g_test_message("rod %s, |w| = %g: t - 3 = %.3g, %d evaluations",
+                       turned ? "turned" : "on the axes", wn, t - 3.0, ev);
+      g_assert_cmpfloat(fabs(t - 3.0), <=, 1e-12);
+      g_assert_cmpint(ev, <=, 20);
+    }
+  }
+  /* t_max |w| above 2^50: the angle cannot be reduced accurately, no
+   * certificate (*t: certified up to 0) */
+  double const wbig[3] = {1e15, 0, 0}, r[3] = {0, 5, 0}, v[3] = {0, -1, 0};
+  double t = -1;
+  g_assert_cmpint(pw85_contact_time(r, v, rod, wbig, ball, z, 10.0, &t), ==, PW85_ERR_INACCURATE);
+  g_assert_cmpfloat(t, ==, 0.0);
+  g_rand_free(rng);
+}
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   g_test_add_func("/pw85_contact_time/bad-input", test_bad_input);
@@ -469,11 +643,14 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact_time/spinning-pair", test_spinning_pair);
   g_test_add_func("/pw85_contact_time/special", test_special);
   g_test_add_func("/pw85_contact_time/steep-crossing", test_steep_crossing);
+  g_test_add_func("/pw85_contact_time/domain", test_domain);
   g_test_add_func("/pw85_contact_time/rate", test_rate);
   g_test_add_func("/pw85_contact_time/reference", test_reference);
   g_test_add_func("/pw85_contact_time/grazing-band", test_grazing_band);
   g_test_add_func("/pw85_contact_time/scaling", test_scaling);
   g_test_add_func("/pw85_contact_time/pairs", test_pairs);
   g_test_add_func("/pw85_contact_time/limits", test_limits);
+  g_test_add_func("/pw85_contact_time/rotating-reference", test_rotating_reference);
+  g_test_add_func("/pw85_contact_time/symmetric-spin", test_symmetric_spin);
   return g_test_run();
 }

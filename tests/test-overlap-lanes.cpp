@@ -1,12 +1,13 @@
-/* The overlap lanes of both widths (src/core/overlap/overlap_lanes.cpp;
- * docs/batch.md, "Throughput"), called directly: the batch calls of the
- * public API take only the width overlap_lanes_width() picks, so without
- * this program overlap_lanes<4> would never run on an AVX-512 machine, nor
- * overlap_lanes<8> without one. Linked with the library's own object
- * (fma_kernels). Natively on an AVX-512 machine, <8> runs the x86-64-v4
- * variant and <4> the x86-64-v3 one; under valgrind (overlap-lanes-valgrind:
- * no AVX-512 emulated) <8> runs as blocks of 4; with isa_dispatch=false both
- * run the portable body.
+/* The overlap lanes of both widths and the one-pair hot path of every
+ * variant this CPU runs (src/core/overlap/overlap_variants.cpp: portable,
+ * x86-64-v3, x86-64-v4; docs/batch.md, "Throughput"), called directly
+ * through the table of each variant (dispatch/kernels.hpp, kernels_of):
+ * the public API takes only the variant and the width this CPU runs, so
+ * without this program the portable and x86-64-v3 code would never run on
+ * an AVX-512 machine, nor the 4-lane width there. Linked with the library's
+ * own objects (pw85_core). Under valgrind (overlap-lanes-valgrind: no
+ * AVX-512 emulated) the portable and v3 variants run; with
+ * isa_dispatch=false only the portable one is built.
  *
  * For 2048 pairs of each class of bench_batch (semi-axes log-uniform in
  * [0.5, 2] ... [0.001, 1000], centre offsets from deep overlap to 3.2 times
@@ -15,18 +16,22 @@
  * offset 0 ... W - 1 (so that each pair visits every lane, next to other
  * neighbours): every decided lane (verdict 0 or 1) equals pw85_overlap's
  * verdict, a bad pair is never decided, each pair gets the same verdict in
- * every lane position, and at least 95 % of the good pairs are decided.
+ * every lane position, and at least 95 % of the good pairs are decided;
+ * the one-pair path of each variant either declines (bad pairs, and only
+ * those with r12 != 0 that pw85_overlap rejects) or gives pw85_overlap's
+ * verdict and status.
  *
  * The rows of the reference groups /contact, /near_contact and /special
  * (mu^2 from exact rational arithmetic), each in every lane position of
- * both widths: every decided lane has the reference verdict (the
- * near-tangent and special pairs are where a wrong rounding margin of a
- * lane certificate shows). */
+ * both widths and through each one-pair path: every decided verdict is the
+ * reference verdict (the near-tangent and special pairs are where a wrong
+ * rounding margin of a certificate shows). */
 #include <cmath>
 #include <vector>
 
 #include <glib.h>
 
+#include "dispatch/kernels.hpp"
 #include "overlap/overlap.hpp"
 #include "pw85.h"
 #include "../bench/bench_common.hpp"
@@ -37,6 +42,36 @@ extern "C" {
 namespace {
 
 constexpr int kPairs = 2048;
+
+// The overlap kernels of the variants this CPU runs, each table once (a
+// variant without overlap kernels of its own shares another's table).
+struct OverlapVariant {
+  pw85::Variant variant;
+  pw85::OverlapKernels const *kernels;
+};
+std::vector<OverlapVariant> overlap_variants() {
+  std::vector<OverlapVariant> out;
+  pw85::Variant const all[] = {pw85::Variant::portable, pw85::Variant::fma, pw85::Variant::v3,
+                               pw85::Variant::v4};
+  for (pw85::Variant v : all) {
+    if (!pw85::variant_runs(v)) continue;
+    pw85::OverlapKernels const *k = pw85::kernels_of(v).overlap;
+    bool seen = false;
+    for (OverlapVariant const &o : out) seen = seen || o.kernels == k;
+    if (!seen) out.push_back({v, k});
+  }
+  return out;
+}
+
+template <int W>
+void lanes(pw85::OverlapKernels const &k, double const *const rp[W], double const *const q1p[W],
+           double const *const q2p[W], int v[W]) {
+  static_assert(W == 4 || W == 8, "the widths of OverlapKernels");
+  if constexpr (W == 8)
+    k.lanes8(rp, q1p, q2p, v);
+  else
+    k.lanes4(rp, q1p, q2p, v);
+}
 
 struct Pairs {
   std::vector<double> r, q1, q2;
@@ -80,7 +115,7 @@ Pairs make_pairs(int cls) {
 }
 
 template <int W>
-void check_width(Pairs const &p) {
+void check_width(pw85::OverlapKernels const &kernels, Pairs const &p) {
   // verdict of pair k in each lane position, -2 before any
   std::vector<int> seen(kPairs, -2);
   int good = 0, decided = 0;
@@ -93,7 +128,7 @@ void check_width(Pairs const &p) {
         q2p[l] = &p.q2[6 * (k0 + l)];
       }
       int v[W];
-      pw85::overlap_lanes<W>(rp, q1p, q2p, v);
+      lanes<W>(kernels, rp, q1p, q2p, v);
       for (int l = 0; l < W; ++l) {
         int const k = k0 + l;
         g_assert_cmpint(v[l], >=, -1);
@@ -124,12 +159,27 @@ void test_class(gconstpointer data) {
   g_assert_cmpint(n_overlap, >, kPairs / 5);
   g_assert_cmpint(n_overlap, <, 4 * kPairs / 5);
   g_assert_cmpint(n_bad, >, 0);
-  check_width<pw85::kOverlapLanes>(p);
-  check_width<pw85::kOverlapLanesV4>(p);
+  for (OverlapVariant const &o : overlap_variants()) {
+    pw85::OverlapKernels const &kernels = *o.kernels;
+    g_test_message("variant %s", pw85::variant_name(o.variant));
+    check_width<pw85::kOverlapLanes>(kernels, p);
+    check_width<pw85::kOverlapLanesV4>(kernels, p);
+    for (int k = 0; k < kPairs; ++k) {
+      int verdict = -7;
+      pw85::Status status = pw85::kOk;
+      bool const screened =
+          kernels.screened(&p.r[3 * k], &p.q1[6 * k], &p.q2[6 * k], verdict, status);
+      if (p.ref[k] < 0) g_assert_false(screened);
+      if (!screened) continue;
+      g_assert_cmpint(status, ==, pw85::kOk);
+      g_assert_cmpint(verdict, ==, p.ref[k]);
+    }
+  }
 }
 
 template <int W>
-void check_reference_width(RefPairs const *g, int &wrong, int &decided) {
+void check_reference_width(pw85::OverlapKernels const &kernels, RefPairs const *g, int &wrong,
+                           int &decided) {
   long long const n = static_cast<long long>(g->n);
   for (int off = 0; off < W; ++off)
     for (long long k0 = -off; k0 < n; k0 += W) {
@@ -141,7 +191,7 @@ void check_reference_width(RefPairs const *g, int &wrong, int &decided) {
         q2p[l] = g->q2 + 6 * k;
       }
       int v[W];
-      pw85::overlap_lanes<W>(rp, q1p, q2p, v);
+      lanes<W>(kernels, rp, q1p, q2p, v);
       for (int l = 0; l < W; ++l) {
         long long const k = ((k0 + l) % n + n) % n;
         double const mu2 = g->mu2[k];
@@ -160,8 +210,25 @@ void test_reference(gconstpointer data) {
   RefPairs *g = refdata_pairs_or_skip(static_cast<char const *>(data));
   if (g == nullptr) return;
   int wrong = 0, decided = 0;
-  check_reference_width<pw85::kOverlapLanes>(g, wrong, decided);
-  check_reference_width<pw85::kOverlapLanesV4>(g, wrong, decided);
+  for (OverlapVariant const &o : overlap_variants()) {
+    pw85::OverlapKernels const &kernels = *o.kernels;
+    check_reference_width<pw85::kOverlapLanes>(kernels, g, wrong, decided);
+    check_reference_width<pw85::kOverlapLanesV4>(kernels, g, wrong, decided);
+    for (long long k = 0; k < static_cast<long long>(g->n); ++k) {
+      int verdict = -7;
+      pw85::Status status = pw85::kOk;
+      double const mu2 = g->mu2[k];
+      if (!kernels.screened(g->r12 + 3 * k, g->q1 + 6 * k, g->q2 + 6 * k, verdict, status) ||
+          status != pw85::kOk || mu2 == 1.0)
+        continue;
+      decided++;
+      if (verdict != (mu2 < 1.0 ? 1 : 0)) {
+        wrong++;
+        g_test_message("%s row %lld, one pair, variant %s: verdict %d, reference mu2 %.17g",
+                       g->group, k, pw85::variant_name(o.variant), verdict, mu2);
+      }
+    }
+  }
   g_test_message("%s: %llu rows, %d lane verdicts, %d wrong", g->group,
                  static_cast<unsigned long long>(g->n), decided, wrong);
   g_assert_cmpint(wrong, ==, 0);

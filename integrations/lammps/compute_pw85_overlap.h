@@ -1,7 +1,7 @@
 /* compute ID group pw85/overlap: global vector of 2, the number of
  * overlapping pairs (exact verdicts of pw85_overlap) and the smallest mu^2
  * over the pairs of the group closer than twice the largest semi-axis.
- * docs/lammps.md. */
+ * integrations/lammps/README.md. */
 #ifndef COMPUTE_PW85_OVERLAP_H
 #define COMPUTE_PW85_OVERLAP_H
 

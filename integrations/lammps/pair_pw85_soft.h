@@ -1,6 +1,6 @@
 /* pair_style pw85/soft: U = epsilon (1 - mu^2)^3 for mu^2 < 1, zero beyond,
  * mu^2 the Perram-Wertheim contact function of two ellipsoids; forces and
- * torques from pw85_contact_derivatives_pairs. docs/lammps.md. */
+ * torques from pw85_contact_derivatives_pairs. integrations/lammps/README.md. */
 #ifndef PAIR_PW85_SOFT_H
 #define PAIR_PW85_SOFT_H
 

@@ -1,6 +1,6 @@
 /* Shared by pair_style pw85/soft and compute pw85/overlap: the quadratic
  * forms of LAMMPS's ellipsoids, the largest semi-axis of each atom type,
- * and the collective stop on bad input. docs/lammps.md. */
+ * and the collective stop on bad input. integrations/lammps/README.md. */
 #ifndef PW85_LAMMPS_H
 #define PW85_LAMMPS_H
 

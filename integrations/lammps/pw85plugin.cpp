@@ -1,5 +1,5 @@
 /* The LAMMPS plugin of libpw85: pair_style pw85/soft and compute
- * pw85/overlap, loaded with `plugin load pw85plugin.so` (docs/lammps.md). */
+ * pw85/overlap, loaded with `plugin load pw85plugin.so` (integrations/lammps/README.md). */
 #include "compute_pw85_overlap.h"
 #include "lammpsplugin.h"
 #include "pair_pw85_soft.h"

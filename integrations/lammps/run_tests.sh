@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The LAMMPS plugin's tests (suite lammps, docs/lammps.md): builds LAMMPS and
+# The LAMMPS plugin's tests (suite lammps, integrations/lammps/README.md): builds LAMMPS and
 # the plugin with build.sh (once; later runs reuse them), registers the suite
 # in the meson build directory (options lammps_lmp, lammps_plugin) and runs it.
 #

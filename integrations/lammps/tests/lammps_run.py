@@ -1,4 +1,4 @@
-"""Helpers of the LAMMPS plugin's tests (docs/lammps.md, "Tests"): running
+"""Helpers of the LAMMPS plugin's tests (integrations/lammps/README.md, "Tests"): running
 lmp (on one rank, or on several under mpirun), the thermo table, dumps, and
 the random ellipsoid configurations written as LAMMPS data files.
 

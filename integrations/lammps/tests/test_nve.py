@@ -5,7 +5,7 @@ trend (RMS of the residual of a least-squares line through E, sampled every
 the same time (velocity Verlet: an energy error of order dt^2). The trend is
 removed because fix nve/asphere's quaternion update (Richardson iteration)
 is not symplectic: its drift shrinks faster than dt^2 and would mix into a
-plain RMS of E - E(0) (docs/lammps.md, "Tests"). 512 ellipsoids (spheroids
+plain RMS of E - E(0) (integrations/lammps/README.md, "Tests"). 512 ellipsoids (spheroids
 and general ellipsoids), packing fraction 0.2, kT = 0.5, epsilon = 1
 (pw85_md's test, here in LAMMPS)."""
 import sys

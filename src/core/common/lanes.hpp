@@ -1,6 +1,6 @@
 // Vectors of doubles (GCC vector extensions) and their lane-by-lane
 // helpers, for the loops that process several pairs at once
-// (overlap/overlap_lanes.cpp, contact/default_lanes.cpp; docs/batch.md,
+// (overlap/filters.hpp, contact/default_lanes.cpp; docs/batch.md,
 // "Throughput"). No operation mixes lanes.
 #pragma once
 
@@ -23,10 +23,10 @@ namespace lanes {
 // target lacks is split by GCC).
 template <int W>
 struct Width {
-  typedef double V __attribute__((vector_size(8 * W)));
+  typedef double type __attribute__((vector_size(8 * W)));
 };
 template <int W>
-using VecD = typename Width<W>::V;
+using VecD = typename Width<W>::type;
 
 // The width of the lane loops that do not choose one per instruction set.
 constexpr int kLanes = 4;
@@ -50,10 +50,10 @@ typedef MaskD<kLanes> M;
 // The unsigned mask type of a vector type: 0 or ~0 per lane.
 template <int W>
 struct UMaskWidth {
-  typedef unsigned long long M __attribute__((vector_size(8 * W)));
+  typedef unsigned long long type __attribute__((vector_size(8 * W)));
 };
 template <class T>
-using UMaskOf = typename UMaskWidth<width<T>()>::M;
+using UMaskOf = typename UMaskWidth<width<T>()>::type;
 
 // Comparisons lane by lane as unsigned masks: lt(x, y) is x < y, and so on
 // (y a vector or a double). GCC 12 folds the & or | of two comparisons
@@ -64,9 +64,8 @@ using UMaskOf = typename UMaskWidth<width<T>()>::M;
 // operation on 512-bit comparisons is then compiled lane by lane (vcomisd,
 // setcc, insertions). Converted to the unsigned mask type, a comparison is
 // not folded so and compiles to vcmppd into a mask register and a masked
-// move (pw85_overlap_pairs, x86-64-v4, class 0: 23.8 ns per pair with the
-// signed masks and vmax below as a select, 11.6 with these and vmax as
-// written; build/bench/bench_batch --reps 7).
+// move (pw85_overlap_pairs on x86-64-v4, against the signed masks and vmax
+// below as a select: build/bench/bench_batch --reps 7).
 #define PW85_LANES_COMPARISON(name, op)                                          \
   template <class T>                                                             \
   PW85_ALWAYS_INLINE UMaskOf<T> name(T x, T y) noexcept {                        \
@@ -86,8 +85,8 @@ PW85_LANES_COMPARISON(ne, !=)
 
 template <class T>
 PW85_ALWAYS_INLINE T vabs(T x) noexcept {
-  typedef MaskOf<T> K;
-  return reinterpret_cast<T>(reinterpret_cast<K>(x) & (K{} + ~kSign));
+  typedef MaskOf<T> Bits;
+  return reinterpret_cast<T>(reinterpret_cast<Bits>(x) & (Bits{} + ~kSign));
 }
 // m ? a : b, lane by lane.
 template <class K, class T>
@@ -95,15 +94,15 @@ PW85_ALWAYS_INLINE T select(K m, T a, T b) noexcept {
   return reinterpret_cast<T>((m & reinterpret_cast<K>(a)) | (~m & reinterpret_cast<K>(b)));
 }
 // a > b ? a : b (a NaN in a gives b), as v2::max of screen.hpp; as a
-// vector conditional, one vmaxpd on x86 (objdump of overlap_lanes.cpp).
+// vector conditional, one vmaxpd on x86 (objdump of overlap_variants.cpp).
 template <class T>
 PW85_ALWAYS_INLINE T vmax(T a, T b) noexcept { return a > b ? a : b; }
 // std::copysign(x, y), lane by lane.
 template <class T>
 PW85_ALWAYS_INLINE T copysign(T x, T y) noexcept {
-  typedef MaskOf<T> K;
-  return reinterpret_cast<T>((reinterpret_cast<K>(x) & (K{} + ~kSign)) |
-                             (reinterpret_cast<K>(y) & (K{} + kSign)));
+  typedef MaskOf<T> Bits;
+  return reinterpret_cast<T>((reinterpret_cast<Bits>(x) & (Bits{} + ~kSign)) |
+                             (reinterpret_cast<Bits>(y) & (Bits{} + kSign)));
 }
 template <class T>
 PW85_ALWAYS_INLINE T vsqrt(T x) noexcept {
@@ -126,8 +125,8 @@ PW85_ALWAYS_INLINE bool any(K m) noexcept {
 // are loaded as one 256-bit vector per pair and those pairs of elements
 // after them as one 128-bit vector per pair, then transposed by shuffles:
 // written lane by lane, GCC 12 builds these vectors in pieces through the
-// stack (pw85_overlap_pairs, x86-64-v4, class 0: 11.6 ns per pair that way,
-// 10.6 this way; build/bench/bench_batch --reps 7, same load).
+// stack (pw85_overlap_pairs on x86-64-v4, the two ways:
+// build/bench/bench_batch --reps 7).
 template <int N, int W>
 PW85_ALWAYS_INLINE void gather(double const *const p[W], VecD<W> out[N]) noexcept {
   int i = 0;
@@ -180,6 +179,15 @@ PW85_ALWAYS_INLINE double vsqrt(double x) noexcept { return std::sqrt(x); }
 PW85_ALWAYS_INLINE double select(bool m, double a, double b) noexcept { return m ? a : b; }
 PW85_ALWAYS_INLINE bool finite(double x) noexcept { return std::isfinite(x); }
 PW85_ALWAYS_INLINE bool any(bool m) noexcept { return m; }
+PW85_ALWAYS_INLINE bool lt(double x, double y) noexcept { return x < y; }
+PW85_ALWAYS_INLINE bool le(double x, double y) noexcept { return x <= y; }
+PW85_ALWAYS_INLINE bool gt(double x, double y) noexcept { return x > y; }
+PW85_ALWAYS_INLINE bool ge(double x, double y) noexcept { return x >= y; }
+
+// m and not n, lane by lane, for the masks of the comparisons above.
+template <class Mask>
+PW85_ALWAYS_INLINE Mask and_not(Mask m, Mask n) noexcept { return m & ~n; }
+PW85_ALWAYS_INLINE bool and_not(bool m, bool n) noexcept { return m & !n; }
 
 }  // namespace lanes
 }  // namespace pw85

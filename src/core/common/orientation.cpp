@@ -6,6 +6,7 @@
 #include "common/ellipsoid.hpp"
 #include "common/fp.hpp"
 #include "common/isa.hpp"
+#include "dispatch/kernels.hpp"
 #include "common/magnitude.hpp"
 #include "common/scaling.hpp"
 #include "common/spd.hpp"
@@ -113,19 +114,30 @@ PW85_ALWAYS_INLINE Status quat_body(Vec3 const &radii, double const quat[4], Sym
   return kOk;
 }
 
+Status quat_portable(Vec3 const &radii, double const quat[4], Sym3 &q) noexcept {
+  return quat_body<kStaticFma>(radii, quat, q);
+}
+constexpr OrientationKernels kOrientation_portable = {quat_portable};
+
 #if PW85_ISA_FMA
 PW85_TARGET_FMA Status quat_fma(Vec3 const &radii, double const quat[4], Sym3 &q) noexcept {
   return quat_body<true>(radii, quat, q);
 }
+constexpr OrientationKernels kOrientation_fma = {quat_fma};
 #endif
 
 }  // namespace
 
-Status ellipsoid_quat(Vec3 const &radii, double const quat[4], Sym3 &q) noexcept {
+OrientationKernels const *orientation_kernels_for(Variant v) noexcept {
 #if PW85_ISA_FMA
-  if (isa::has_fma()) return quat_fma(radii, quat, q);
+  if (v != Variant::portable) return &kOrientation_fma;
 #endif
-  return quat_body<isa::kStaticFma>(radii, quat, q);
+  (void)v;
+  return &kOrientation_portable;
+}
+
+Status ellipsoid_quat(Vec3 const &radii, double const quat[4], Sym3 &q) noexcept {
+  return kernels().orientation->ellipsoid_quat(radii, quat, q);
 }
 
 namespace {

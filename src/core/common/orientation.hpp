@@ -6,6 +6,7 @@
 
 #include "common/status.hpp"
 #include "common/sym3.hpp"
+#include "dispatch/variant.hpp"
 
 namespace pw85 {
 
@@ -31,5 +32,12 @@ Status ellipsoid_quat(Vec3 const &radii, double const quat[4], Sym3 &q) noexcept
 // kNoConvergence when the sweeps do not converge (never observed; outputs
 // written).
 Status ellipsoid_axes(Sym3 const &q, Vec3 &radii, double rot[9], double quat[4]) noexcept;
+
+// The variants of ellipsoid_quat (orientation.cpp): Dekker's product on any
+// CPU, the fused multiply-add from the fma variant up, where built.
+struct OrientationKernels {
+  Status (*ellipsoid_quat)(Vec3 const &radii, double const quat[4], Sym3 &q) noexcept;
+};
+OrientationKernels const *orientation_kernels_for(Variant v) noexcept;
 
 }  // namespace pw85

@@ -69,4 +69,25 @@ inline AxisBounds axis_bounds(Sym3 const &q) noexcept {
   return AxisBounds{std::sqrt(hi), std::sqrt(lo)};
 }
 
+// Upper bound on ||[W, Q]||_F, W = [w]x: dQ(t)/dt = [W, Q(t)] and
+// ||[W, Q(t)]|| = ||[W, Q]|| (R commutes with W), so it bounds the rate of
+// change of Q(t) whatever |w|: 0 for a spin about an axis of symmetry
+// (T3'). The entries are formed in double; each is a sum of 4 products
+// bounded by |w|_inf |Q|_max, whence the margin.
+inline double commutator_norm(Sym3 const &q, Vec3 const &w) noexcept {
+  double const m[3][3] = {{q[0], q[1], q[2]}, {q[1], q[3], q[4]}, {q[2], q[4], q[5]}};
+  double const wm[3][3] = {{0.0, -w[2], w[1]}, {w[2], 0.0, -w[0]}, {-w[1], w[0], 0.0}};
+  double sum = 0.0, qmax = 0.0, wmax = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    wmax = std::fmax(wmax, std::fabs(w[i]));
+    for (int j = 0; j < 3; ++j) {
+      qmax = std::fmax(qmax, std::fabs(m[i][j]));
+      double c = 0.0;
+      for (int k = 0; k < 3; ++k) c += wm[i][k] * m[k][j] - m[i][k] * wm[k][j];
+      sum += c * c;
+    }
+  }
+  return std::sqrt(sum) * (1.0 + 8 * kU) + 3.0 * 16 * kU * wmax * qmax;
+}
+
 }  // namespace pw85

@@ -1,8 +1,8 @@
 // Time of first contact of two moving ellipsoids (docs/contact_time.md):
 // r12(t) = r12 + t v12, Q_i(t) = R_i(t) Q_i R_i(t)^T, R_i(t) = exp(t [w_i]x);
 // t_c = inf{t in [0, t_max] : mu^2(t) <= 1} by certified conservative
-// advancement on lower bounds of mu(t), then a refinement of the crossing
-// (T1)-(T8).
+// advancement on lower bounds of mu(t) for the exact motion of the inputs,
+// then a refinement of the crossing on a certified bracket (T1)-(T10).
 #pragma once
 
 #include "common/status.hpp"
@@ -23,7 +23,10 @@ struct ContactTimeResult {
 // Preconditions (checked by the C layer): every value finite, q1 and q2
 // positive definite, t_max finite and > 0. Returns kOk, kNoConvergence
 // (budget exhausted, an evaluation failed or no certified step; res.t as
-// above) or kInvalidArgument (the motion leaves the range of double).
+// above), kInaccurate (decided from the inputs before any evaluation: a
+// semi-axis ratio bound above 1e7 in either ellipsoid, or t_max |w_i| >
+// 2^50; res.t = 0) or kInvalidArgument (the motion leaves the range of
+// double).
 Status contact_time(Vec3 const &r12, Vec3 const &v12, Sym3 const &q1, Vec3 const &w1,
                     Sym3 const &q2, Vec3 const &w2, double t_max,
                     ContactTimeResult &res) noexcept;

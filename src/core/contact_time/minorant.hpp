@@ -18,6 +18,8 @@
 
 #include "common/fp.hpp"
 #include "common/sym3.hpp"
+#include "contact_time/axes.hpp"
+#include "contact_time/enclosure.hpp"
 #include "contact_time/motion.hpp"
 
 namespace pw85 {
@@ -113,6 +115,45 @@ inline bool minorant(Vec3 const &r0, Vec3 const &v, double t, Sym3 const &q1, Ve
   }
   double const rot = norm(w1) * qn1 / h1 + norm(w2) * qn2 / h2;
   m.gap = gap - 12 * kU * d0 - 8 * kU * kU * (norm(r0) + t * norm(v));
+  m.n1 = dd::to_double(vu) - 4 * kU * norm(v);
+  m.d1 = d1;
+  m.slope = m.n1 - level * d1 - 32 * kU * rot;
+  return std::isfinite(m.gap) && std::isfinite(m.slope);
+}
+
+// The same for a rotating pair at the exact pose (enclosure.hpp): h_i =
+// sqrt(y_i^T Q_i y_i), y_i = R_i(t)^T u in double-double (spin.hpp), so that
+// h_i is that of the exact Q_i(t) to ~2 u relative, thin directions
+// included (the rounding of R_i^T u adds below 8 u^2 a_max,i^2 / h_i, in the
+// margin); D0' = sum_i w_i . (Q_i y_i x y_i) / h_i (R_i^T w_i = w_i).
+inline bool minorant_rotating(ExactPose const &pose, Vec3 const &v, Sym3 const &q1,
+                              Vec3 const &w1, Sym3 const &q2, Vec3 const &w2,
+                              AxisBounds const &ax1, AxisBounds const &ax2, Vec3 const &s,
+                              double level, Minorant &m) noexcept {
+  double const sn = norm(s);
+  if (!(sn > 0.0) || !std::isfinite(sn)) return false;
+  Vec3 const u{{s[0] / sn, s[1] / sn, s[2] / sn}};
+  dd::DD const ud[kDim] = {{u[0], 0.0}, {u[1], 0.0}, {u[2], 0.0}};
+  Vec3 y1, y2;
+  double const h1 = std::sqrt(to_double(rotated_form(pose.sp1, q1, ud, &y1)));
+  double const h2 = std::sqrt(to_double(rotated_form(pose.sp2, q2, ud, &y2)));
+  if (!(h1 > 0.0) || !(h2 > 0.0)) return false;
+  dd::DD const vu = dot_dd(v, u);
+  dd::DD const n0 = dd::add(dot_dd(Vec3{{pose.r[0].hi, pose.r[1].hi, pose.r[2].hi}}, u),
+                            dot_dd(Vec3{{pose.r[0].lo, pose.r[1].lo, pose.r[2].lo}}, u));
+  double const d0 = h1 + h2;
+  m.h[0] = h1;
+  m.h[1] = h2;
+  double const gap = dd::to_double(dd::sub(n0, dd::mul<false>(dd::two_sum(h1, h2), level)));
+  double const d1 = dot(w1, cross(multiply(q1, y1), y1)) / h1 + dot(w2, cross(multiply(q2, y2), y2)) / h2;
+  double qn1 = 0.0, qn2 = 0.0;
+  for (int i = 0; i < kSym; ++i) {
+    qn1 += std::fabs(q1[i]);
+    qn2 += std::fabs(q2[i]);
+  }
+  double const rot = norm(w1) * qn1 / h1 + norm(w2) * qn2 / h2;
+  double const thin = 8 * kU * kU * (ax1.a_max * ax1.a_max / h1 + ax2.a_max * ax2.a_max / h2);
+  m.gap = gap - 12 * kU * d0 - thin - 8 * kU * kU * norm(Vec3{{pose.r[0].hi, pose.r[1].hi, pose.r[2].hi}});
   m.n1 = dd::to_double(vu) - 4 * kU * norm(v);
   m.d1 = d1;
   m.slope = m.n1 - level * d1 - 32 * kU * rot;

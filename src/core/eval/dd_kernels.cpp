@@ -1,85 +1,84 @@
-// The double-double kernels of f_dd.hpp, compiled for any CPU (Dekker's
-// product) and with the FMA instruction, chosen at run time
-// (common/isa.hpp). std::fma without hardware FMA is a library call, ten
-// times slower than either.
+// The double-double kernels of f_dd.hpp in their variants (dd_kernels.hpp)
+// and the calls that run the variant of this CPU.
+#include "eval/dd_kernels.hpp"
+
+#include "dispatch/kernels.hpp"
 #include "eval/f_dd.hpp"
 
 namespace pw85 {
 
 namespace {
-#if PW85_ISA_FMA
-PW85_TARGET_FMA bool f_eval_dd_fma(double lambda, Vec3 const &r,
-                                                  Sym3 const &q1, Sym3 const &q2,
-                                                  FEvalDD &out) noexcept {
-  return f_eval_dd_impl<true>(lambda, r, q1, q2, out);
-}
-PW85_TARGET_FMA double f_stationary_fma(double lambda, Vec3 const &r,
-                                                      Sym3 const &q1, Sym3 const &q2,
-                                                      Vec3 const &s) noexcept {
-  return f_stationary_avx(lambda, r, q1, q2, s);
-}
-PW85_TARGET_FMA Vec3 residual_dd_fma(double lambda, Vec3 const &r,
-                                                   Sym3 const &q1, Sym3 const &q2,
-                                                   Vec3 const &s) noexcept {
-  return residual_dd_impl<true>(lambda, r, q1, q2, s);
-}
-PW85_TARGET_FMA bool contact_point_dd_fma(double lambda, Vec3 const &r,
-                                                        Sym3 const &q1, Sym3 const &q2,
-                                                        Vec3 &x0, Vec3 &n,
-                                                        double &df) noexcept {
-  return contact_point_dd_impl<true>(lambda, r, q1, q2, x0, n, df);
-}
-PW85_TARGET_FMA double refined_point_dd_fma(double lambda, Sym3 const &q1,
-                                                         Sym3 const &q2, Vec3 const &s,
-                                                         Vec3 const &delta, Vec3 &x0,
-                                                         Vec3 &q2s) noexcept {
-  return refined_point_impl<true>(lambda, q1, q2, s, delta, x0, q2s);
-}
+
+// The kernels of one variant, compiled with the target attribute TARGET from
+// the bodies of f_dd.hpp with Dekker's product (FMA false) or the fused
+// multiply-add (FMA true); STATIONARY is f_stationary's body.
+#define PW85_DD_VARIANT(name, TARGET, FMA, STATIONARY)                                                    \
+  TARGET bool f_eval_##name(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,    \
+                            FEvalDD &out) noexcept {                                          \
+    return f_eval_dd_impl<FMA>(lambda, r, q1, q2, out);                                       \
+  }                                                                                           \
+  TARGET double f_stationary_##name(double lambda, Vec3 const &r, Sym3 const &q1,            \
+                                    Sym3 const &q2, Vec3 const &s) noexcept {                 \
+    return STATIONARY(lambda, r, q1, q2, s);                                                   \
+  }                                                                                           \
+  TARGET Vec3 residual_##name(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,  \
+                              Vec3 const &s) noexcept {                                       \
+    return residual_dd_impl<FMA>(lambda, r, q1, q2, s);                                       \
+  }                                                                                           \
+  TARGET bool contact_point_##name(double lambda, Vec3 const &r, Sym3 const &q1,             \
+                                   Sym3 const &q2, Vec3 &x0, Vec3 &n, double &df) noexcept {  \
+    return contact_point_dd_impl<FMA>(lambda, r, q1, q2, x0, n, df);                          \
+  }                                                                                           \
+  TARGET double refined_point_##name(double lambda, Sym3 const &q1, Sym3 const &q2,          \
+                                     Vec3 const &s, Vec3 const &delta, Vec3 &x0,              \
+                                     Vec3 &q2s) noexcept {                                    \
+    return refined_point_impl<FMA>(lambda, q1, q2, s, delta, x0, q2s);                        \
+  }                                                                                           \
+  constexpr DdKernels kDd_##name = {f_eval_##name, f_stationary_##name, residual_##name,     \
+                                    contact_point_##name, refined_point_##name};
+
+#if PW85_ISA_STATIC_FMA
+PW85_DD_VARIANT(portable, , true, f_stationary_avx)
+#else
+PW85_DD_VARIANT(portable, , false, f_stationary_impl<false>)
 #endif
+#if PW85_ISA_FMA
+PW85_DD_VARIANT(fma, PW85_TARGET_FMA, true, f_stationary_avx)
+#endif
+
 }  // namespace
+
+DdKernels const *dd_kernels_for(Variant v) noexcept {
+#if PW85_ISA_FMA
+  if (v != Variant::portable) return &kDd_fma;
+#endif
+  (void)v;
+  return &kDd_portable;
+}
 
 bool f_eval_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                FEvalDD &out) noexcept {
-#if PW85_ISA_FMA
-  if (isa::has_fma()) return f_eval_dd_fma(lambda, r, q1, q2, out);
-#endif
-  return f_eval_dd_impl<isa::kStaticFma>(lambda, r, q1, q2, out);
+  return kernels().dd->f_eval(lambda, r, q1, q2, out);
 }
 
 double f_stationary(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                     Vec3 const &s) noexcept {
-#if PW85_ISA_STATIC_FMA
-  return f_stationary_avx(lambda, r, q1, q2, s);
-#else
-#if PW85_ISA_FMA
-  if (isa::has_fma()) return f_stationary_fma(lambda, r, q1, q2, s);
-#endif
-  return f_stationary_impl<false>(lambda, r, q1, q2, s);
-#endif
+  return kernels().dd->f_stationary(lambda, r, q1, q2, s);
 }
 
 Vec3 residual_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                  Vec3 const &s) noexcept {
-#if PW85_ISA_FMA
-  if (isa::has_fma()) return residual_dd_fma(lambda, r, q1, q2, s);
-#endif
-  return residual_dd_impl<isa::kStaticFma>(lambda, r, q1, q2, s);
+  return kernels().dd->residual(lambda, r, q1, q2, s);
 }
 
 bool contact_point_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                       Vec3 &x0, Vec3 &n, double &df) noexcept {
-#if PW85_ISA_FMA
-  if (isa::has_fma()) return contact_point_dd_fma(lambda, r, q1, q2, x0, n, df);
-#endif
-  return contact_point_dd_impl<isa::kStaticFma>(lambda, r, q1, q2, x0, n, df);
+  return kernels().dd->contact_point(lambda, r, q1, q2, x0, n, df);
 }
 
 double refined_point_dd(double lambda, Sym3 const &q1, Sym3 const &q2, Vec3 const &s,
                         Vec3 const &delta, Vec3 &x0, Vec3 &q2s) noexcept {
-#if PW85_ISA_FMA
-  if (isa::has_fma()) return refined_point_dd_fma(lambda, q1, q2, s, delta, x0, q2s);
-#endif
-  return refined_point_impl<isa::kStaticFma>(lambda, q1, q2, s, delta, x0, q2s);
+  return kernels().dd->refined_point(lambda, q1, q2, s, delta, x0, q2s);
 }
 
 }  // namespace pw85

@@ -376,7 +376,7 @@ PW85_ALWAYS_INLINE double refined_point_impl(double lambda, Sym3 const &q1, Sym3
   return to_double(sub(p1, p2));
 }
 
-// Dispatching wrappers (dd_kernels.cpp): the FMA variant when the CPU has it.
+// The kernels of the variant this CPU runs (dd_kernels.cpp, dispatch/kernels.hpp).
 bool f_eval_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                FEvalDD &out) noexcept;
 double f_stationary(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,

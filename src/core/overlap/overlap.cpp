@@ -2,73 +2,44 @@
 // the exact stage (overlap_exact.cpp) for the pairs they cannot decide.
 // The argument that each verdict is certain is in docs/overlap.md; the
 // equation numbers below refer to it.
-//
-// Notation (after an exact power-of-two scaling): E1 = {x : x^T Q1^{-1} x <= 1},
-// E2 = {x : (x - r)^T Q2^{-1} (x - r) <= 1}, Q(l) = (1 - l) Q1 + l Q2,
-// f(l) = l (1 - l) r^T Q(l)^{-1} r, mu^2 = max f (pw85 documentation,
-// chapter 3, eqs. (6), (10), (11)).
+// The first certificates, written once for one pair and for W pairs, and
+// the notation are in filters.hpp; this file holds the later stages of one
+// pair's filters and the entry of the general path.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 
 #include "common/fp.hpp"
-#include "common/isa.hpp"
 #include "common/magnitude.hpp"
-#include "overlap/bounded_sym.hpp"
+#include "overlap/bounded.hpp"
+#include "overlap/filters.hpp"
 #include "overlap/overlap.hpp"
 #include "overlap/overlap_dd.hpp"
-#include "common/screen.hpp"
 
 namespace pw85 {
 
 namespace {
 
+using namespace overlap_filters;
+
 // Error bound (eq. (O3), overlap.hpp): |fl(E) - E| <= kC * fl(P) + kAbs.
-constexpr double kC = kOverlapFilterC;
-constexpr double kAbs = kOverlapFilterAbs;
+constexpr double kC = kOverlapFilterC, kAbs = kOverlapFilterAbs;
 constexpr double kRangeHi = kOverlapRangeHi, kRangeLo = kOverlapRangeLo;
 
-// A bounded value in one SSE2 register: lane 0 is the computed value fl(E)
-// of an expression E, lane 1 the computed value fl(P) of the same expression
-// on absolute values with every - replaced by + (eq. (O3)). Both lanes see
-// the same operations in the same order, so one packed operation does the
-// work of the value and of its bound. A term that is subtracted enters as
-// neg(x) = {x, -|x|} (or flip(b) = {b0, -b1} for a bounded subexpression):
-// lane 1 then computes P_a - (-P_b) = P_a + P_b exactly as (O3) requires.
-typedef double V2 __attribute__((vector_size(16)));
-
-inline V2 pos(double x) noexcept { return V2{x, std::fabs(x)}; }
-inline V2 neg(double x) noexcept { return V2{x, -std::fabs(x)}; }
-inline V2 flip(V2 b) noexcept { return b * V2{1.0, -1.0}; }
-inline double err(V2 b) noexcept { return kC * b[1] + kAbs; }
-
-// The bounded matrix algebra of bounded_sym.hpp on V2.
-using SymB = bounded::Sym<V2>;
-using bounded::det_adj;
-using bounded::mixed_adj;
-using bounded::outer;
-using bounded::quad;
-using bounded::trace_adj;
-
-// p[i] = pos(q[i]), n[i] = neg(q[i]).
-inline SymB bound(Sym3 const &q) noexcept {
-  SymB b;
-  for (int i = 0; i < kSym; ++i) {
-    b.p[i] = pos(q[i]);
-    b.n[i] = flip(b.p[i]);
-  }
-  return b;
-}
+// The bounded values of one pair (bounded.hpp): {fl(E), fl(P)} in one
+// vector of 2 doubles.
+using bounded::Pair;
+using PairSym = bounded::Sym<Pair>;
 
 // g = det Q - y^T adj(Q) y > 0 certified: y = x - c strictly inside
 // {y : y^T Q^{-1} y < 1} (eq. (O6)); yb[] is y bounded (lane 1 >= |y_i|),
 // |y_i| <= 2^60 required by the caller. When the double bound leaves the
 // sign open, the same expression in double-double decides (eq. (O15)).
-inline bool inside(V2 det, V2 const m[kSym], V2 const yb[kDim], Sym3 const &q,
+inline bool inside(Pair det, Pair const m[kSym], Pair const yb[kDim], Sym3 const &q,
                    Vec3 const &x, Vec3 const &c) noexcept {
-  V2 yy[kSym];
+  Pair yy[kSym];
   outer(yb, yy);
-  V2 const g = det - flip(quad(m, yy));
+  Pair const g = det - flip(quad(m, yy));
   if (g[0] > err(g)) return true;
   if (!(g[0] > -err(g))) return false;  // certainly outside (or NaN)
   return witness_g_dd(q, x, c) > kDDRel * g[1] + kAbs;
@@ -76,15 +47,15 @@ inline bool inside(V2 det, V2 const m[kSym], V2 const yb[kDim], Sym3 const &q,
 
 // p(l) = det Q(l) - l (1 - l) r^T adj Q(l) r at l on the grid 2^-52 Z, so
 // that nu = 1 - l is exact (eq. (O4)).
-inline V2 p_at(double l, V2 const rr[kSym], SymB const &q1, SymB const &q2) noexcept {
+inline Pair p_at(double l, Pair const rr[kSym], PairSym const &q1, PairSym const &q2) noexcept {
   double const nu = 1.0 - l;
-  SymB q;
+  PairSym q;
   for (int i = 0; i < kSym; ++i) {
     q.p[i] = nu * q1.p[i] + l * q2.p[i];  // lane 1: nu |q1| + l |q2| >= |q(l)|
     q.n[i] = flip(q.p[i]);
   }
-  V2 m[kSym];
-  V2 const d = det_adj(q, m);
+  Pair m[kSym];
+  Pair const d = det_adj(q, m);
   return d - flip((l * nu) * quad(m, rr));
 }
 
@@ -111,15 +82,10 @@ inline bool newton_values(double l, Vec3 const &r, Sym3 const &q1, Sym3 const &q
   return std::isfinite(out.f) && std::isfinite(out.df) && std::isfinite(out.d2f);
 }
 
-// Rounds l in [0, 1] to the grid 2^-52 Z (exact: (l + 1) - 1).
-inline double to_grid(double l) noexcept {
-  return (l + 1.0) - 1.0;
-}
-
 // p(l) from its coefficients P_j in the basis s^(4-j) t^j (eq. (O14)),
 // s = 1 - l exact (l on the grid 2^-52 Z), with the bound of (O14) from the
 // rounding of the sum and the bounds E_j of the coefficients.
-inline V2 p_bernstein(double l, double const P[5], double const E[5]) noexcept {
+inline Pair p_bernstein(double l, double const P[5], double const E[5]) noexcept {
   double const sv = 1.0 - l, t = l;
   double const s2 = sv * sv, t2 = t * t;
   double const w0 = s2 * s2, w1 = (s2 * sv) * t, w2 = s2 * t2, w3 = sv * (t2 * t), w4 = t2 * t2;
@@ -128,22 +94,22 @@ inline V2 p_bernstein(double l, double const P[5], double const E[5]) noexcept {
                      (std::fabs(P[2]) * w2 + (std::fabs(P[3]) * w3 + std::fabs(P[4]) * w4));
   double const s2a = (E[0] * w0 + E[1] * w1) + (E[2] * w2 + (E[3] * w3 + E[4] * w4));
   // Lane 1 stored so that err() = kC * lane 1 + kAbs is the bound of (O14).
-  return V2{v, (16 * kU * s1a + s2a) * (1.0 + 32 * kU) / kC};
+  return Pair{v, (16 * kU * s1a + s2a) * (1.0 + 32 * kU) / kC};
 }
 
 // Witness certificate (eq. (O6)): x strictly inside E1 and E2.
-inline bool witness_inside(Vec3 const &x, Vec3 const &r, V2 const rb[kDim], Sym3 const &q1,
-                           Sym3 const &q2, V2 det1, V2 const m1[kSym], V2 det2,
-                           V2 const m2[kSym]) noexcept {
+inline bool witness_inside(Vec3 const &x, Vec3 const &r, Pair const rb[kDim], Sym3 const &q1,
+                           Sym3 const &q2, Pair det1, Pair const m1[kSym], Pair det2,
+                           Pair const m2[kSym]) noexcept {
   // The error bound (O3) with kAbs needs |x_i| (and so |x_i - r_i|) in the
   // safe range (eq. (O9)); NaN fails the test too.
   if (!(std::fabs(x[0]) <= kRangeHi && std::fabs(x[1]) <= kRangeHi &&
         std::fabs(x[2]) <= kRangeHi))
     return false;
-  V2 const xb[kDim] = {pos(x[0]), pos(x[1]), pos(x[2])};
+  Pair const xb[kDim] = {pos(x[0]), pos(x[1]), pos(x[2])};
   Vec3 const zero{{0.0, 0.0, 0.0}};
   if (!inside(det1, m1, xb, q1, x, zero)) return false;
-  V2 const y[kDim] = {xb[0] - flip(rb[0]), xb[1] - flip(rb[1]), xb[2] - flip(rb[2])};
+  Pair const y[kDim] = {xb[0] - flip(rb[0]), xb[1] - flip(rb[1]), xb[2] - flip(rb[2])};
   return inside(det2, m2, y, q2, x, r);
 }
 
@@ -152,21 +118,21 @@ inline bool witness_inside(Vec3 const &x, Vec3 const &r, V2 const rb[kDim], Sym3
 // both ellipsoids, P_k the bound expression of g_k (eq. (O15)) with the
 // offsets y bounded by |hi| + |lo| and |hi -+ r| (1 + 2^-50) + |lo|.
 inline bool witness_dd_inside(Vec3 const &hi, Vec3 const &lo, bool from_c2, Vec3 const &r,
-                              Sym3 const &q1, Sym3 const &q2, V2 det1, V2 const m1[kSym],
-                              V2 det2, V2 const m2[kSym]) noexcept {
+                              Sym3 const &q1, Sym3 const &q2, Pair det1, Pair const m1[kSym],
+                              Pair det2, Pair const m2[kSym]) noexcept {
   if (!(std::fabs(hi[0]) <= kRangeHi && std::fabs(hi[1]) <= kRangeHi &&
         std::fabs(hi[2]) <= kRangeHi))
     return false;
-  V2 e[kDim], o[kDim];  // lane 1: bounds of the offsets from c and from the other centre
+  Pair e[kDim], o[kDim];  // lane 1: bounds of the offsets from c and from the other centre
   double const sgn = from_c2 ? 1.0 : -1.0;
   for (int i = 0; i < kDim; ++i) {
     e[i] = pos(hi[i]) + pos(lo[i]);
     o[i] = pos(std::fabs(hi[i] + sgn * r[i]) * (1.0 + 0x1p-50) + std::fabs(lo[i]));
   }
-  V2 ee[kSym], oo[kSym];
+  Pair ee[kSym], oo[kSym];
   outer(e, ee);
   outer(o, oo);
-  V2 const *mc = from_c2 ? m2 : m1, *mo = from_c2 ? m1 : m2;
+  Pair const *mc = from_c2 ? m2 : m1, *mo = from_c2 ? m1 : m2;
   double const pc = (from_c2 ? det2 : det1)[1] + quad(mc, ee)[1];
   double const po = (from_c2 ? det1 : det2)[1] + quad(mo, oo)[1];
   double g[2];
@@ -177,175 +143,36 @@ inline bool witness_dd_inside(Vec3 const &hi, Vec3 const &lo, bool from_c2, Vec3
 
 // p(l) <= 0 certified (separation, eq. (O4)): in double, and in
 // double-double (eq. (O15)) when the double bound leaves the sign open.
-inline bool p_negative(double l, Vec3 const &r, V2 const rr[kSym], Sym3 const &q1,
-                       Sym3 const &q2, SymB const &b1q, SymB const &b2q) noexcept {
-  V2 const pl = p_at(l, rr, b1q, b2q);
+inline bool p_negative(double l, Vec3 const &r, Pair const rr[kSym], Sym3 const &q1,
+                       Sym3 const &q2, PairSym const &b1q, PairSym const &b2q) noexcept {
+  Pair const pl = p_at(l, rr, b1q, b2q);
   if (pl[0] <= -err(pl)) return true;
   if (!(pl[0] <= err(pl))) return false;  // certainly positive (or NaN)
   return p_dd(l, r, q1, q2) <= -(kDDRel * pl[1] + kAbs);
-}
-
-// Decided verdict (0 or 1) or kUndecided.
-constexpr int kUndecided = -1;
-
-// The bounded quantities of eq. (O10) that the later certificates reuse:
-// det Q_k and adj Q_k (m1, m2), c0 = r^T adj Q1 r, c1 = r^T M r,
-// c2 = r^T adj Q2 r, b1 = tr(adj(Q1) Q2), b2 = tr(adj(Q2) Q1), and the
-// inner coefficients P1, P2, P3 of p in the basis s^(4-j) t^j.
-struct Coefs {
-  V2 det1, det2, m1[kSym], m2[kSym], mm[kSym], c0, c1, c2, b1, b2, p1, p2, p3;
-};
-
-// Coefficients of p in the basis s^(4-j) t^j, s = 1 - l, t = l (eq. (O10)):
-// P0 = b0 = det Q1, P1 = b0 + b1 - c0, P2 = b1 + b2 - c1, P3 = b2 + b3 - c2,
-// P4 = b3 = det Q2, with M (mm) the mixed adjugate.
-[[gnu::always_inline]] inline void coefficients(V2 const rr[kSym], SymB const &b1q, SymB const &b2q,
-                         Coefs &c) noexcept {
-  c.det1 = det_adj(b1q, c.m1);
-  c.det2 = det_adj(b2q, c.m2);
-  c.c0 = quad(c.m1, rr);
-  c.c2 = quad(c.m2, rr);
-  c.b1 = trace_adj(c.m1, b2q);
-  c.b2 = trace_adj(c.m2, b1q);
-  mixed_adj(b1q, b2q, c.mm);
-  c.c1 = quad(c.mm, rr);
-  c.p1 = (c.det1 + c.b1) - flip(c.c0);
-  c.p2 = (c.b1 + c.b2) - flip(c.c1);
-  c.p3 = (c.b2 + c.det2) - flip(c.c2);
-}
-
-// The certificate (O18): the Bernstein coefficients x[0..4] of p (scaled
-// by 6 so that binom(4, j) divides exactly: 6 P0, 1.5 P1, P2, 1.5 P3, 6 P4)
-// subdivided at tau = wt / (ws + wt) by de Casteljau's algorithm in
-// homogeneous form (weights ws, wt >= 0 instead of 1 - tau, tau: the results
-// are the coefficients on [0, tau] and [tau, 1] times powers of ws + wt > 0,
-// same signs, and no division). All of them > err: p > 0 on [0, 1], overlap
-// (1). The one they share is (ws + wt)^4 6 p(tau): <= -err means
-// f(tau) >= 1, separation (0). Otherwise kUndecided.
-// The weights are first scaled by the power of two 2^-e that brings
-// ws + wt into [0.5, 1) (exact; e from the exponent bits, no libm call), so
-// that no product overflows and an underflow error is never amplified:
-// every value of the algorithm is then a combination of the x[j] with
-// nonnegative weights summing to less than 1, which keeps the absolute
-// term kAbs of (O3) valid. ws and wt must be >= 0 with ws + wt < 2^1000
-// (here they are below 2^220, eq. (O9)); a NaN makes every test false.
-inline int subdivide(V2 const x[5], double ws, double wt) noexcept {
-  std::uint64_t bits;
-  double const sum = ws + wt;
-  std::memcpy(&bits, &sum, sizeof bits);
-  // Biased exponent E of sum; 2^-(E - 1022) has biased exponent 2045 - E
-  // (normal for 1 <= E <= 2044; sum = 0 or subnormal (E = 0): 2^1022 times
-  // a value below 2^-1022, still < 1).
-  std::uint64_t const scale_bits = (std::uint64_t{2045} << 52) - (bits & 0x7ff0000000000000u);
-  double scale;
-  std::memcpy(&scale, &scale_bits, sizeof scale);
-  V2 const s{ws * scale, ws * scale}, t{wt * scale, wt * scale};
-  V2 const y0 = s * x[0] + t * x[1], y1 = s * x[1] + t * x[2], y2 = s * x[2] + t * x[3],
-           y3 = s * x[3] + t * x[4];
-  V2 const z0 = s * y0 + t * y1, z1 = s * y1 + t * y2, z2 = s * y2 + t * y3;
-  V2 const u0 = s * z0 + t * z1, u1 = s * z1 + t * z2;
-  V2 const pt = s * u0 + t * u1;
-  bool const positive = (y0[0] > err(y0)) & (z0[0] > err(z0)) & (u0[0] > err(u0)) &
-                        (pt[0] > err(pt)) & (u1[0] > err(u1)) & (z2[0] > err(z2)) &
-                        (y3[0] > err(y3));
-  bool const negative = pt[0] <= -err(pt);
-  // 1, 0 or kUndecided without a branch on the verdict (unpredictable).
-  return static_cast<int>(positive) - static_cast<int>(!positive & !negative);
-}
-
-int filters_slow(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, double l, int &st) noexcept;
-
-// The floating-point filters on inputs in the safe range (eq. (O9)):
-// |Q_ij| <= 2^60, |r_i| <= 2^60, r != 0. Returns 0, 1 or kUndecided.
-// Inlined into the hot path (screened_body, compiled once per instruction
-// set); the general path calls the out-of-line copy `filters` below.
-[[gnu::always_inline]] inline int filters_inline(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                                 int &st) noexcept {
-  V2 const rb[kDim] = {pos(r[0]), pos(r[1]), pos(r[2])};
-  V2 rr[kSym];
-  outer(rb, rr);
-  SymB const b1q = bound(q1), b2q = bound(q2);
-  // --- Separating plane orthogonal to r (eq. (O11)). ---
-  // h_i^2 = r^T Q_i r: E1 lies in {x : r.x <= h1}, E2 in {x : r.x >= r.r - h2}.
-  V2 const a1 = quad(b1q.p, rr), a2 = quad(b2q.p, rr);
-  // Tested squared, without square roots (shorter latency to the branch):
-  // R = r.r >= sqrt(A1) + sqrt(A2) iff D = R^2 - A1 - A2 >= 0 and
-  // D^2 >= 4 A1 A2, with A_k >= h_k^2 and margins for every rounding.
-  double const A1 = a1[0] + err(a1), A2 = a2[0] + err(a2);
-  double const rdr = rr[0][0] + rr[1][0] + rr[2][0];
-  double const d = (rdr * rdr) * (1.0 - 16 * kU) - (A1 + A2) * (1.0 + 16 * kU);
-  // One branch on the combined test (opaque: GCC would otherwise branch on
-  // each comparison; docs/overlap.md).
-  bool plane = (d > 0.0) & ((d * d) * (1.0 - 16 * kU) >= (4.0 * (A1 * A2)) * (1.0 + 16 * kU) + 0x1p-1000);
-  opaque(plane);
-  if (plane) {
-    st = kStageSpheres;
-    return 0;
-  }
-  double const h1 = std::sqrt(A1), h2 = std::sqrt(A2);
-  // --- Coefficients of p (eq. (O10)). ---
-  Coefs c;
-  coefficients(rr, b1q, b2q, c);
-  V2 const x[5] = {6.0 * c.det1, 1.5 * c.p1, c.p2, 1.5 * c.p3, 6.0 * c.det2};
-  // (O13): the coefficients themselves positive (also covers the pairs
-  // whose weights below underflow, e.g. |r| tiny); and (O18) at
-  // tau0 = h1 / (h1 + h2) (the start (M7) of docs/methods.md, with the
-  // support values of the plane test). Both are computed, and one branch
-  // tests whether either decided: in the scenes of the benchmark (O13)
-  // decides 82 and 55 % of the pairs past the plane in classes 1 and 2, a
-  // branch on it alone is often mispredicted, and a mispredicted
-  // branch costs more than (O18) (docs/overlap.md). opaque()
-  // keeps GCC from sinking (O18) into a branch on (O13).
-  bool const o13 = (x[0][0] > err(x[0])) & (x[1][0] > err(x[1])) & (x[2][0] > err(x[2])) &
-                   (x[3][0] > err(x[3])) & (x[4][0] > err(x[4]));
-  int v = subdivide(x, h2, h1);
-  opaque(v);
-  int const m13 = -static_cast<int>(o13);  // all ones when (O13) holds
-  v = (v & ~m13) | (m13 & 1);
-  if (v != kUndecided) {
-    st = kStageFilter;
-    return v;
-  }
-  // --- (O18) at tau1: one step of the map (M19) of docs/methods.md from
-  // l = 1/2, tau1 = g1 / (g1 + g2), g_k^2 = n^T Q_k n along
-  // n = adj(Q1 + Q2) r = (adj Q1 + M + adj Q2) r (the normal of the contact
-  // for l = 1/2). Not certified: any tau gives a valid certificate. ---
-  Sym3 a;
-  for (int i = 0; i < kSym; ++i) a[i] = (c.m1[i][0] + c.mm[i][0]) + c.m2[i][0];
-  Vec3 const n = multiply(a, r);
-  double const g1 = std::sqrt(dot(n, multiply(q1, n)));
-  double const g2 = std::sqrt(dot(n, multiply(q2, n)));
-  v = subdivide(x, g2, g1);
-  if (v != kUndecided) {
-    st = kStageFilter;
-    return v;
-  }
-  double l = to_grid(g1 / (g1 + g2));
-  if (!(l > 0.0 && l < 1.0)) l = to_grid(h1 / (h1 + h2));
-  if (!(l > 0.0 && l < 1.0)) l = 0.5;
-  return filters_slow(r, q1, q2, l, st);
 }
 
 [[gnu::noinline]] int filters(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int &st) noexcept {
   return filters_inline(r, q1, q2, st);
 }
 
+}  // namespace
+
 // The pairs that (O18) leaves open (near contact, or coefficients whose
 // bounds are too loose): Newton on log f from l, p(l) from Q(l), witnesses.
-// Rare (under 1 % of the pairs of the benchmark scenes), so it recomputes
-// the coefficients rather than receive them: the hot path then keeps them
-// in registers.
-[[gnu::noinline]] int filters_slow(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, double l,
-                                   int &st) noexcept {
-  V2 const rb[kDim] = {pos(r[0]), pos(r[1]), pos(r[2])};
-  V2 rr[kSym];
+// Rare (the first certificates decide almost every pair: docs/overlap.md),
+// so it recomputes the coefficients rather than receive them: the hot path
+// then keeps them in registers.
+[[gnu::noinline]] int overlap_filters::filters_slow(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
+                                                    double l, int &st) noexcept {
+  Pair const rb[kDim] = {pos(r[0]), pos(r[1]), pos(r[2])};
+  Pair rr[kSym];
   outer(rb, rr);
-  SymB const b1q = bound(q1), b2q = bound(q2);
-  Coefs c;
-  coefficients(rr, b1q, b2q, c);
-  V2 const &det1 = c.det1, &det2 = c.det2, &c0 = c.c0, &c1 = c.c1, &c2 = c.c2, &b1 = c.b1,
+  PairSym const b1q = bound_sym(q1.a), b2q = bound_sym(q2.a);
+  Coefs<double> c;
+  coefficients<double>(rr, b1q, b2q, c);
+  Pair const &det1 = c.det1, &det2 = c.det2, &c0 = c.c0, &c1 = c.c1, &c2 = c.c2, &b1 = c.b1,
            &b2 = c.b2, &p1 = c.p1, &p2 = c.p2, &p3 = c.p3;
-  V2 const *m1 = c.m1, *m2 = c.m2;
+  Pair const *m1 = c.m1, *m2 = c.m2;
   // --- Maximiser of f = l (1 - l) N / D (not certified: only chooses l),
   // N = c0 s^2 + c1 s t + c2 t^2 = r^T adj Q(l) r, D = det Q(l) (eq. (O10)),
   // by safeguarded Newton steps on phi = log f (concave on (0, 1): f is
@@ -362,7 +189,7 @@ int filters_slow(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, double l, int &s
   double const d0 = det1[0], d1 = b1[0] - 3.0 * d0, d2 = (3.0 * d0 - 2.0 * b1[0]) + b2[0];
   double const d3 = ((b1[0] - d0) - b2[0]) + det2[0];
   double lo = 0.0, hi = 1.0;
-  V2 p = p_bernstein(l, Pc, Ec);
+  Pair p = p_bernstein(l, Pc, Ec);
   for (int it = 0; it < 8 && !(p[0] <= -err(p)); ++it) {
     double const nv = n0 + l * (n1 + l * n2), dn = n1 + 2.0 * n2 * l;
     double const dv = d0 + l * (d1 + l * (d2 + l * d3));
@@ -488,6 +315,8 @@ int filters_slow(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, double l, int &s
   return kUndecided;
 }
 
+namespace {
+
 inline bool in_range(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
   double const qm1 = max_abs(q1.a, kSym), qm2 = max_abs(q2.a, kSym);
   double const qm = qm1 > qm2 ? qm1 : qm2;
@@ -561,63 +390,6 @@ Status overlap(Vec3 const &r_in, Sym3 const &q1_in, Sym3 const &q2_in, int &verd
   // --- Exact stage. ---
   st = kStageExact;
   return overlap_exact(r_in, q1_in, q2_in, verdict);
-}
-
-namespace {
-
-// The hot path, inlined whole (screen -> filters -> exact stage) into each
-// compiled variant below. False: not screened, nothing written.
-[[gnu::always_inline]] inline bool screened_body(double const *rp, double const *q1p,
-                                                 double const *q2p, int &verdict,
-                                                 Status &status) noexcept {
-  if (!screen_overlap_pair(rp, q1p, q2p, kRangeLo, kRangeHi)) return false;
-  Vec3 const r = load_vec3(rp);
-  Sym3 const q1 = load_sym3(q1p), q2 = load_sym3(q2p);
-  status = kOk;
-  if (r[0] == 0.0 && r[1] == 0.0 && r[2] == 0.0) {
-    verdict = 1;
-    return true;
-  }
-  int st;
-  int const v = filters_inline(r, q1, q2, st);
-  if (v != kUndecided)
-    verdict = v;
-  else
-    status = overlap_exact(r, q1, q2, verdict);
-  return true;
-}
-
-#if PW85_ISA_LEVELS
-// The same code compiled for the x86-64 levels v4 (AVX-512: 32 vector
-// registers, fewer spills of the bounded values) and v3 (AVX2), chosen at
-// run time (docs/overlap.md, "Instruction sets and reproducibility"). This file is built with
-// GCC's default contraction (src/meson.build), so the v3 and v4 variants
-// fuse some a * b + c into FMAs; every bound of the filters holds for a
-// fused operation too (the product's rounding error is then 0), so the
-// verdicts do not depend on the variant.
-PW85_TARGET_V4 bool screened_v4(double const *rp,
-                                                            double const *q1p,
-                                                            double const *q2p, int &verdict,
-                                                            Status &status) noexcept {
-  return screened_body(rp, q1p, q2p, verdict, status);
-}
-PW85_TARGET_V3 bool screened_v3(double const *rp,
-                                                            double const *q1p,
-                                                            double const *q2p, int &verdict,
-                                                            Status &status) noexcept {
-  return screened_body(rp, q1p, q2p, verdict, status);
-}
-#endif
-
-}  // namespace
-
-bool overlap_screened(double const *rp, double const *q1p, double const *q2p, int &verdict,
-                      Status &status) noexcept {
-#if PW85_ISA_LEVELS
-  if (isa::has_v4()) return screened_v4(rp, q1p, q2p, verdict, status);
-  if (isa::has_v3()) return screened_v3(rp, q1p, q2p, verdict, status);
-#endif
-  return screened_body(rp, q1p, q2p, verdict, status);
 }
 
 }  // namespace pw85

@@ -17,6 +17,7 @@
 #include "common/fp.hpp"
 #include "common/status.hpp"
 #include "common/sym3.hpp"
+#include "dispatch/kernels.hpp"
 
 namespace pw85 {
 
@@ -53,12 +54,15 @@ constexpr double kOverlapFilterAbs = 0x1p-800;
 // the safe range above) and returns false, with nothing written, when they
 // fail it (the caller then validates them and calls overlap()). Otherwise
 // sets status and verdict exactly as overlap() would and returns true.
-bool overlap_screened(double const *r, double const *q1, double const *q2, int &verdict,
-                      Status &status) noexcept;
+inline bool overlap_screened(double const *r, double const *q1, double const *q2, int &verdict,
+                             Status &status) noexcept {
+  return kernels().overlap->screened(r, q1, q2, verdict, status);
+}
 
 // The screen and the first certificates of the filters ((O11), (O13),
 // (O18) at tau0 and tau1) for W pairs at once, pair l = (r[l], q1[l],
-// q2[l]) in lane l (overlap_lanes.cpp): verdict[l] = 1 or 0, exact and
+// q2[l]) in lane l (overlap/filters.hpp, compiled in overlap_variants.cpp
+// for each variant): verdict[l] = 1 or 0, exact and
 // equal to pw85_overlap's, or -1 when the lane is not decided there (the
 // caller then calls pw85_overlap). Reads 3 and 6 doubles at each pointer;
 // any values (NaN included) are accepted. W is kOverlapLanes or
@@ -67,18 +71,16 @@ bool overlap_screened(double const *r, double const *q1, double const *q2, int &
 // register per vector).
 constexpr int kOverlapLanes = 4;
 constexpr int kOverlapLanesV4 = 8;
-int overlap_lanes_width() noexcept;
+inline int overlap_lanes_width() noexcept { return kernels().overlap->lanes_width; }
 template <int W>
-void overlap_lanes(double const *const r[W], double const *const q1[W], double const *const q2[W],
-                   int verdict[W]) noexcept;
-extern template void overlap_lanes<kOverlapLanes>(double const *const[kOverlapLanes],
-                                                  double const *const[kOverlapLanes],
-                                                  double const *const[kOverlapLanes],
-                                                  int[kOverlapLanes]) noexcept;
-extern template void overlap_lanes<kOverlapLanesV4>(double const *const[kOverlapLanesV4],
-                                                    double const *const[kOverlapLanesV4],
-                                                    double const *const[kOverlapLanesV4],
-                                                    int[kOverlapLanesV4]) noexcept;
+inline void overlap_lanes(double const *const r[W], double const *const q1[W],
+                          double const *const q2[W], int verdict[W]) noexcept {
+  static_assert(W == kOverlapLanes || W == kOverlapLanesV4, "the widths of OverlapKernels");
+  if constexpr (W == kOverlapLanesV4)
+    kernels().overlap->lanes8(r, q1, q2, verdict);
+  else
+    kernels().overlap->lanes4(r, q1, q2, verdict);
+}
 
 // The exact stage alone (no filter): same contract as overlap().
 Status overlap_exact(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,

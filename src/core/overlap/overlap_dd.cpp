@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "arith/dd.hpp"
+#include "dispatch/kernels.hpp"
 #include "eval/f_dd.hpp"
 
 namespace pw85 {
@@ -127,65 +128,58 @@ PW85_ALWAYS_INLINE double p_impl(double l, Vec3 const &r, Sym3 const &q1,
   return dd::to_double(p);
 }
 
-// FMA variants for the run-time choice (common/isa.hpp).
-#if PW85_ISA_FMA
-PW85_TARGET_FMA double witness_g_fma(Sym3 const &q, Vec3 const &x,
-                                                    Vec3 const &c) noexcept {
-  return witness_g_impl<true>(q, x, c);
-}
-PW85_TARGET_FMA bool witness_point_fma(double l, Vec3 const &r, Sym3 const &q1,
-                                                      Sym3 const &q2, bool from_c2, Vec3 &hi,
-                                                      Vec3 &lo, double &df) noexcept {
-  return witness_point_impl<true>(l, r, q1, q2, from_c2, hi, lo, df);
-}
-PW85_TARGET_FMA void witness_pair_fma(Sym3 const &q1, Sym3 const &q2,
-                                                     Vec3 const &r, Vec3 const &hi,
-                                                     Vec3 const &lo, bool from_c2,
-                                                     double g[2]) noexcept {
-  witness_pair_impl<true>(q1, q2, r, hi, lo, from_c2, g);
-}
-PW85_TARGET_FMA double p_fma(double l, Vec3 const &r, Sym3 const &q1,
-                                            Sym3 const &q2) noexcept {
-  return p_impl<true>(l, r, q1, q2);
-}
-#endif
+// The kernels of one variant, compiled with the target attribute TARGET
+// with Dekker's product (FMA false) or the fused multiply-add (FMA true).
+#define PW85_OVERLAP_DD_VARIANT(name, TARGET, FMA)                                            \
+  TARGET double witness_g_##name(Sym3 const &q, Vec3 const &x, Vec3 const &c) noexcept {     \
+    return witness_g_impl<FMA>(q, x, c);                                                      \
+  }                                                                                           \
+  TARGET double p_##name(double l, Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept { \
+    return p_impl<FMA>(l, r, q1, q2);                                                         \
+  }                                                                                           \
+  TARGET bool witness_point_##name(double l, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,  \
+                                   bool from_c2, Vec3 &hi, Vec3 &lo, double &df) noexcept {   \
+    return witness_point_impl<FMA>(l, r, q1, q2, from_c2, hi, lo, df);                        \
+  }                                                                                           \
+  TARGET void witness_pair_##name(Sym3 const &q1, Sym3 const &q2, Vec3 const &r,             \
+                                  Vec3 const &hi, Vec3 const &lo, bool from_c2,               \
+                                  double g[2]) noexcept {                                     \
+    witness_pair_impl<FMA>(q1, q2, r, hi, lo, from_c2, g);                                    \
+  }                                                                                           \
+  constexpr OverlapDdKernels kOverlapDd_##name = {witness_g_##name, p_##name,                \
+                                                  witness_point_##name, witness_pair_##name};
 
-// The variant used when not dispatched: FMA when the whole build targets it.
-constexpr bool kF = isa::kStaticFma;
+PW85_OVERLAP_DD_VARIANT(portable, , kStaticFma)
+#if PW85_ISA_FMA
+PW85_OVERLAP_DD_VARIANT(fma, PW85_TARGET_FMA, true)
+#endif
 
 }  // namespace
 
-double witness_g_dd(Sym3 const &q, Vec3 const &x, Vec3 const &c) noexcept {
+OverlapDdKernels const *overlap_dd_kernels_for(Variant v) noexcept {
 #if PW85_ISA_FMA
-  if (isa::has_fma()) return witness_g_fma(q, x, c);
+  if (v != Variant::portable) return &kOverlapDd_fma;
 #endif
-  return witness_g_impl<kF>(q, x, c);
+  (void)v;
+  return &kOverlapDd_portable;
+}
+
+double witness_g_dd(Sym3 const &q, Vec3 const &x, Vec3 const &c) noexcept {
+  return kernels().overlap_dd->witness_g(q, x, c);
 }
 
 bool witness_point_dd(double l, Vec3 const &r, Sym3 const &q1, Sym3 const &q2, bool from_c2,
                       Vec3 &hi, Vec3 &lo, double &df) noexcept {
-#if PW85_ISA_FMA
-  if (isa::has_fma()) return witness_point_fma(l, r, q1, q2, from_c2, hi, lo, df);
-#endif
-  return witness_point_impl<kF>(l, r, q1, q2, from_c2, hi, lo, df);
+  return kernels().overlap_dd->witness_point(l, r, q1, q2, from_c2, hi, lo, df);
 }
 
 void witness_pair_dd(Sym3 const &q1, Sym3 const &q2, Vec3 const &r, Vec3 const &hi,
                      Vec3 const &lo, bool from_c2, double g[2]) noexcept {
-#if PW85_ISA_FMA
-  if (isa::has_fma()) {
-    witness_pair_fma(q1, q2, r, hi, lo, from_c2, g);
-    return;
-  }
-#endif
-  witness_pair_impl<kF>(q1, q2, r, hi, lo, from_c2, g);
+  kernels().overlap_dd->witness_pair(q1, q2, r, hi, lo, from_c2, g);
 }
 
 double p_dd(double l, Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
-#if PW85_ISA_FMA
-  if (isa::has_fma()) return p_fma(l, r, q1, q2);
-#endif
-  return p_impl<kF>(l, r, q1, q2);
+  return kernels().overlap_dd->p(l, r, q1, q2);
 }
 
 }  // namespace pw85

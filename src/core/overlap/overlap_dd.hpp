@@ -6,6 +6,7 @@
 #pragma once
 
 #include "common/sym3.hpp"
+#include "dispatch/variant.hpp"
 
 namespace pw85 {
 
@@ -38,5 +39,17 @@ bool witness_point_dd(double l, Vec3 const &r, Sym3 const &q1, Sym3 const &q2, b
 // moves g_k by at most 2^-102 P_k, inside the margin kDDRel P_k (eq. (O17)).
 void witness_pair_dd(Sym3 const &q1, Sym3 const &q2, Vec3 const &r, Vec3 const &hi,
                      Vec3 const &lo, bool from_c2, double g[2]) noexcept;
+
+// The variants of the four kernels above (overlap_dd.cpp): Dekker's product
+// on any CPU, the fused multiply-add from the fma variant up, where built.
+struct OverlapDdKernels {
+  double (*witness_g)(Sym3 const &q, Vec3 const &x, Vec3 const &c) noexcept;
+  double (*p)(double l, Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept;
+  bool (*witness_point)(double l, Vec3 const &r, Sym3 const &q1, Sym3 const &q2, bool from_c2,
+                        Vec3 &hi, Vec3 &lo, double &df) noexcept;
+  void (*witness_pair)(Sym3 const &q1, Sym3 const &q2, Vec3 const &r, Vec3 const &hi,
+                       Vec3 const &lo, bool from_c2, double g[2]) noexcept;
+};
+OverlapDdKernels const *overlap_dd_kernels_for(Variant v) noexcept;
 
 }  // namespace pw85
