@@ -139,16 +139,20 @@ def derivatives(docs):
     for r in rows:
         c = int(r["class"])
         out.append([CLASSES[c], r["default_ns"], r["derivatives_ns"], r["ratio_derivatives_default"],
-                    r["contact_ns"], r["pairs_default_ns"], r["pairs_derivatives_ns"], r["ratio_pairs"]])
-    return table(["class", "DEFAULT", "`pw85_contact_derivatives`", "ratio", "`pw85_contact`",
-                  "`pw85_contact_function_pairs`", "`pw85_contact_derivatives_pairs`", "ratio"], out)
+                    r["forces_ns"], r["ratio_forces_default"],
+                    r["contact_ns"], r["pairs_default_ns"], r["pairs_derivatives_ns"], r["ratio_pairs"],
+                    r["pairs_forces_ns"], r["ratio_pairs_forces"]])
+    return table(["class", "DEFAULT", "`pw85_contact_derivatives`", "ratio", "FORCES", "ratio",
+                  "`pw85_contact`", "`pw85_contact_function_pairs`",
+                  "`pw85_contact_derivatives_pairs`", "ratio", "FORCES pairs", "ratio"], out)
 
 
 def derivatives_callgrind(docs):
     rows = rows_of(os.path.join(docs, "bench_derivatives_callgrind.csv"))
-    out = [[CLASSES[int(r["class"])], r["default_per_pair"], r["derivatives_per_pair"], r["ratio"]]
-           for r in rows]
-    return table(["class", "DEFAULT", "`pw85_contact_derivatives`", "ratio"], out)
+    out = [[CLASSES[int(r["class"])], r["default_per_pair"], r["derivatives_per_pair"], r["ratio"],
+            r["forces_per_pair"], r["ratio_forces"]] for r in rows]
+    return table(["class", "DEFAULT", "`pw85_contact_derivatives`", "ratio", "FORCES", "ratio"],
+                 out)
 
 
 def _batch_sections(docs):

@@ -45,7 +45,7 @@
  * Results and the CPU: PW85_METHOD_DEFAULT runs a different algorithm on
  * x86-64 CPUs with AVX-512 (x86-64-v4) when the library is built with
  * GCC >= 12 and the meson option isa_dispatch enabled (its default): a
- * rational step in double-double first, the general method only when that
+ * coefficient step in double-double first, the general method only when that
  * step declines. Its results there may differ in the last bits from those of
  * another CPU, both within the documented accuracy of the method. This
  * concerns pw85_contact_function_method() and pw85_dca() with
@@ -388,7 +388,7 @@ PW85_API int pw85_dca_ex(double const u[PW85_DIM], double const q1[PW85_SYM],
  * of Q(lambda)); when the estimated error exceeds 4e-15 mu2, f is
  * re-evaluated by a compensated (double-double) stationary form, then if
  * needed by L D L^T in double-double. On x86-64 CPUs with AVX-512 (GCC >= 12,
- * isa_dispatch enabled) a rational step in double-double comes first, so the
+ * isa_dispatch enabled) a coefficient step in double-double comes first, so the
  * last bits may differ from another CPU's (top of this header). Documented
  * relative accuracy of mu2: 1e-14. */
 #define PW85_METHOD_DEFAULT 0
@@ -644,7 +644,7 @@ PW85_API int pw85_scene_contact(long long n, double const *centres, double const
  * exact overlap predicate, so its verdict is that of pw85_scene_overlap()
  * on the pair (i, j). A configuration is used by one thread at a time when
  * it is changed (update, move); the other calls may run concurrently on
- * the same configuration. Memory: O(n), about 140 bytes per particle, and
+ * the same configuration. Memory: O(n), about 160 bytes per particle, and
  * a pairs query allocates O(n + pairs) more for its duration. */
 typedef struct pw85_configuration pw85_configuration;
 
@@ -714,6 +714,24 @@ PW85_API int pw85_configuration_test_move(pw85_configuration const *configuratio
                                           long long i, double const centre[PW85_DIM],
                                           double const q[PW85_SYM], long long *j);
 
+/* The neighbours of particle i by centre distance: every j != i with
+ * r12 . r12 < distance^2 (computed in double), r12 = c_j - c_i of the pair
+ * (min(i, j), max(i, j)) or its image as pw85_configuration_pairs() takes
+ * it, in ascending j. A superset of the particles whose ellipsoids lie
+ * within a gap g of particle i's when distance >= R_i + R_max + g (R: the
+ * largest semi-axes); event-driven dynamics keeps such lists with a skin.
+ * *count receives their number; when it is <= capacity, j[0..*count-1]
+ * receive them. Cost: the cells within distance of particle i, no
+ * narrow phase. Returns PW85_OK, PW85_ERR_CAPACITY (*count set, nothing
+ * else written; capacity = 0 with j NULL asks for the count),
+ * PW85_ERR_INVALID_ARGUMENT (NULL pointer, i out of range, capacity < 0,
+ * distance negative or not finite, or with a box larger than
+ * min(Lx, Ly, Lz)/2 (less 1e-9 relative)) or PW85_ERR_NO_MEMORY, with
+ * nothing written. */
+PW85_API int pw85_configuration_neighbours(pw85_configuration const *configuration,
+                                           long long i, double distance, long long capacity,
+                                           long long *j, long long *count);
+
 /* Moves particle i to (centre, q), with no overlap test. Returns as
  * pw85_configuration_test_move(); on error the configuration is
  * unchanged. */
@@ -758,11 +776,40 @@ typedef struct pw85_derivatives_t {
 PW85_API int pw85_contact_derivatives(double const r12[PW85_DIM], double const q1[PW85_SYM],
                                       double const q2[PW85_SYM], pw85_derivatives_t *d);
 
+/* Values of the flags argument of the _ex derivatives calls: what to
+ * compute. PW85_DERIVATIVES_ALL: every field (the calls without _ex).
+ * PW85_DERIVATIVES_FORCES: mu2, lambda, d_r12, d_theta1 and d_theta2 only,
+ * what forces and torques need; d_q1, d_q2 and hess_r12 are set to NaN and
+ * not computed where skipping them does not change the other fields
+ * (docs/derivatives.md). Where the PW85_DERIVATIVES_ALL call returns PW85_OK
+ * or PW85_ERR_INACCURATE, the PW85_DERIVATIVES_FORCES call returns the same
+ * status and the same bits in mu2, lambda, d_r12, d_theta1 and d_theta2.
+ * Other values are invalid. */
+#define PW85_DERIVATIVES_ALL 0u
+#define PW85_DERIVATIVES_FORCES 1u
+
+/* pw85_contact_derivatives() of the fields that flags selects
+ * (PW85_DERIVATIVES_ALL or PW85_DERIVATIVES_FORCES); the fields not selected
+ * are NaN. Flags of any other value: PW85_ERR_INVALID_ARGUMENT and every
+ * field of *d NaN (when d is not NULL). */
+PW85_API int pw85_contact_derivatives_ex(double const r12[PW85_DIM], double const q1[PW85_SYM],
+                                         double const q2[PW85_SYM], unsigned flags,
+                                         pw85_derivatives_t *d);
+
 /* d[k] = pw85_contact_derivatives() of pair k of per-pair arrays
  * (conventions of pw85_contact_pairs). */
 PW85_API int pw85_contact_derivatives_pairs(long long m, double const *r12, double const *q1,
                                             double const *q2, pw85_derivatives_t *d,
                                             int *status, int nthreads);
+
+/* d[k] = pw85_contact_derivatives_ex(..., flags, ...) of pair k of per-pair
+ * arrays (conventions of pw85_contact_pairs). Flags other than
+ * PW85_DERIVATIVES_ALL and PW85_DERIVATIVES_FORCES: PW85_ERR_INVALID_ARGUMENT,
+ * d and status untouched. */
+PW85_API int pw85_contact_derivatives_pairs_ex(long long m, double const *r12,
+                                               double const *q1, double const *q2,
+                                               unsigned flags, pw85_derivatives_t *d,
+                                               int *status, int nthreads);
 
 /* d[k] = pw85_contact_derivatives() of pair k = (i, j) of a scene, r12 =
  * c_j - c_i or its periodic image (conventions of pw85_scene_contact); the
@@ -772,6 +819,16 @@ PW85_API int pw85_scene_contact_derivatives(long long n, double const *centres,
                                             double const *q, double const box[6], long long m,
                                             long long const *pairs, pw85_derivatives_t *d,
                                             int *status, int nthreads);
+
+/* d[k] = pw85_contact_derivatives_ex(..., flags, ...) of pair k = (i, j) of
+ * a scene (conventions of pw85_scene_contact_derivatives). Flags other than
+ * PW85_DERIVATIVES_ALL and PW85_DERIVATIVES_FORCES:
+ * PW85_ERR_INVALID_ARGUMENT, d and status untouched. */
+PW85_API int pw85_scene_contact_derivatives_ex(long long n, double const *centres,
+                                               double const *q, double const box[6],
+                                               long long m, long long const *pairs,
+                                               unsigned flags, pw85_derivatives_t *d,
+                                               int *status, int nthreads);
 
 /* ---- Time of first contact ----------------------------------------------
  * docs/contact_time.md. */

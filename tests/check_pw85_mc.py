@@ -13,6 +13,13 @@ pw85 program's batch mode (exact predicate, mu^2 >= 1); the GSD frame
 mu^2 > 1 - 1e-4. S2 is recomputed from the XYZ orientations with
 numpy.linalg.eigvalsh; the symmetry axes come from rotating z by the
 quaternions with the Hamilton product, independently of the program.
+General ellipsoids (--axes): semi-axes in both files, no overlap. Start
+from a GSD frame (--from, --frame): files written here with python3-gsd
+(gsd.hoomd, its own writer), chunks carried over from frame 0; the
+program's sweep-0 XYZ frame equals the chosen frame exactly (positions
+shifted by L/2 into [0, L), quaternions normalised with w >= 0, semi-axes
+from type_shapes); malformed, non-cubic, non-ellipsoid, mixed-shape and
+overlapping frames refused with exit 2; pw85_mc's own GSD file as a start.
 """
 import os
 import re
@@ -21,6 +28,7 @@ import sys
 import tempfile
 
 import numpy as np
+import gsd.fl
 import gsd.hoomd
 import gsd.pygsd
 
@@ -75,11 +83,158 @@ def production_acceptance(out):
     return float(re.search(r"acceptance rate (\S+),", out).group(1))
 
 
+def check_general_ellipsoids():
+    axes = [0.4, 0.7, 1.0]
+    with tempfile.TemporaryDirectory() as d:
+        xyz, gsdf = os.path.join(d, "e.xyz"), os.path.join(d, "e.gsd")
+        rc, out, err = run(["--n", "300", "--axes", *map(str, axes), "--phi", "0.35", "--equil", "6",
+                            "--sweeps", "4", "--seed", "2", "--xyz", xyz, "--gsd", gsdf])
+        check(rc == 0 and "300 ellipsoids (semi-axes 0.4 0.7 1)" in out and "OK: no overlapping pair" in out,
+              f"--axes 0.4 0.7 1: exit 0 (got {rc}: {err})")
+        header, rows = read_xyz(xyz)[-1]
+        a = np.array([[float(x) for x in r[1:]] for r in rows])
+        pos, q_wxyz, shape = a[:, 0:3], a[:, [6, 3, 4, 5]], a[:, 7:10]
+        box = float(re.match(r'Lattice="(\S+) ', header).group(1))
+        check(np.all(shape == axes), "--axes: XYZ aspherical_shape = (0.4, 0.7, 1)")
+        turned = np.mean(np.abs(q_wxyz[:, 0]) < 0.999)
+        check(turned > 0.5, f"--axes: most ellipsoids turned away from the lattice orientation ({turned})")
+        rc, rows = batch(CLI, pair_lines(pos, axes, q_wxyz, box, 2.0)[0])
+        check(rc == 0 and len(rows) > 300 and all(r[3] == "0" and float(r[1]) >= 1.0 for r in rows),
+              f"--axes: no overlap among {len(rows)} close pairs of the last XYZ frame (exit {rc})")
+        with gsd.hoomd.open(gsdf, "rb") as traj:
+            shapes = traj[0].particles.type_shapes
+        check(shapes == [{"type": "Ellipsoid", "a": 0.4, "b": 0.7, "c": 1.0}], f"--axes: GSD type_shapes {shapes}")
+
+
+def write_gsd(path, frames):
+    """frames: dicts of gsd.hoomd.Frame attributes (None: not written, the
+    reader takes frame 0's)."""
+    with gsd.hoomd.open(path, "wb") as f:
+        for attrs in frames:
+            fr = (getattr(gsd.hoomd, "Frame", None) or gsd.hoomd.Snapshot)()
+            for key, value in attrs.items():
+                obj, name = key.split(".")
+                setattr(getattr(fr, obj), name, value)
+            f.append(fr)
+
+
+def lattice_frame(rng, side=6, spacing=2.1, axes=(0.4, 0.7, 1.0)):
+    """side^3 ellipsoids at random orientations on a cubic lattice of
+    spacing > 2 max(axes) (no overlap), box side * spacing, centred."""
+    L = side * spacing
+    g = (np.arange(side) + 0.5) * spacing - L / 2
+    pos = np.array(np.meshgrid(g, g, g, indexing="ij")).reshape(3, -1).T + rng.uniform(-0.04, 0.04, (side ** 3, 3))
+    quat = rng.normal(size=(side ** 3, 4))
+    quat *= rng.uniform(0.5, 2.0, (side ** 3, 1))  # not unit: the program normalises
+    shape = {"type": "Ellipsoid", "a": axes[0], "b": axes[1], "c": axes[2]}
+    return {"configuration.step": 5, "configuration.box": [L, L, L, 0, 0, 0], "particles.N": side ** 3,
+            "particles.types": ["A"], "particles.typeid": np.zeros(side ** 3, np.uint32),
+            "particles.type_shapes": [shape], "particles.position": pos.astype(np.float32),
+            "particles.orientation": quat.astype(np.float32)}
+
+
+def expected_start(frame):
+    """The centres in [0, L) and the unit quaternions (w >= 0) pw85_mc makes
+    of a frame, in double as the program computes them."""
+    L = float(np.float32(frame["configuration.box"][0]))
+    x = np.asarray(frame["particles.position"], np.float64) + 0.5 * L
+    x = np.fmod(x, L)
+    x = np.where(x < 0, x + L, x)
+    x = np.where(x >= L, x - L, x)
+    q = np.asarray(frame["particles.orientation"], np.float64)
+    norm = np.sqrt(q[:, 0] * q[:, 0] + q[:, 1] * q[:, 1] + q[:, 2] * q[:, 2] + q[:, 3] * q[:, 3])
+    norm = np.where(q[:, 0] < 0, -norm, norm)
+    return L, x, q / norm[:, None]
+
+
+def check_from_gsd():
+    rng = np.random.default_rng(12)
+    with tempfile.TemporaryDirectory() as d:
+        f0 = lattice_frame(rng)
+        f1 = lattice_frame(rng)  # frame 1: new positions and orientations
+        f1["configuration.step"] = 9
+        path = os.path.join(d, "start.gsd")
+        write_gsd(path, [f0, f1])
+        # gsd.hoomd leaves out of frame 1 the chunks equal to frame 0's: the
+        # reader must take them from frame 0.
+        with gsd.fl.open(name=path, mode="rb") as g:
+            carried = [not g.chunk_exists(frame=1, name=c) for c in
+                       ("configuration/box", "particles/N", "particles/type_shapes", "particles/typeid")]
+            check(all(carried) and g.chunk_exists(frame=1, name="particles/position"),
+                  f"--from test file: frame 1 without box, N, type_shapes, typeid ({carried})")
+        for frame_args, frame in (([], f1), (["--frame", "0"], f0), (["--frame", "-1"], f1), (["--frame", "1"], f1)):
+            xyz = os.path.join(d, "s.xyz")
+            rc, out, err = run(["--from", path, *frame_args, "--equil", "0", "--sweeps", "0", "--xyz", xyz])
+            check(rc == 0 and "216 ellipsoids (semi-axes 0.4 0.7 1)" in out and "start from a GSD frame" in out,
+                  f"--from {frame_args}: exit 0 (got {rc}: {err})")
+            if rc != 0:
+                continue
+            header, rows = read_xyz(xyz)[0]
+            a = np.array([[float(x) for x in r[1:]] for r in rows])
+            L, x, q = expected_start(frame)
+            check(float(re.match(r'Lattice="(\S+) ', header).group(1)) == L, f"--from {frame_args}: box {L}")
+            check(np.array_equal(a[:, 0:3], x), f"--from {frame_args}: centres = the frame's positions + L/2, exactly")
+            check(np.max(np.abs(a[:, [6, 3, 4, 5]] - q)) <= 4e-16, f"--from {frame_args}: quaternions normalised, w >= 0")
+            check(np.all(a[:, 7:10] == [0.4, 0.7, 1.0]), f"--from {frame_args}: semi-axes from type_shapes")
+        rc, out, err = run(["--from", path, "--equil", "4", "--sweeps", "4", "--seed", "3"])
+        check(rc == 0 and "OK: no overlapping pair" in out, f"--from, 8 sweeps: exit 0, no overlap (got {rc}: {err})")
+
+        # two types of the same shape: accepted
+        f2 = lattice_frame(rng)
+        f2["particles.types"] = ["A", "B"]
+        f2["particles.type_shapes"] = [f2["particles.type_shapes"][0]] * 2
+        f2["particles.typeid"] = (np.arange(216) % 2).astype(np.uint32)
+        write_gsd(os.path.join(d, "two.gsd"), [f2])
+        rc, out, err = run(["--from", os.path.join(d, "two.gsd"), "--equil", "1", "--sweeps", "1"])
+        check(rc == 0, f"--from: two types of one shape accepted (got {rc}: {err})")
+
+        # refused frames: exit 2, a message naming the problem
+        bad = []
+        f = lattice_frame(rng); f["configuration.box"] = [12.6, 12.6, 13.0, 0, 0, 0]; bad.append(("not cubic", f))
+        f = lattice_frame(rng); f["configuration.box"] = [12.6, 12.6, 12.6, 0.1, 0, 0]; bad.append(("not cubic", f))
+        f = lattice_frame(rng); f["particles.type_shapes"] = [{"type": "Sphere", "diameter": 1.0}]
+        bad.append(("no Ellipsoid", f))
+        f = lattice_frame(rng); f["particles.type_shapes"] = [{}]; bad.append(("no Ellipsoid", f))
+        f = lattice_frame(rng)
+        f["particles.types"] = ["A", "B"]
+        f["particles.type_shapes"] = [f["particles.type_shapes"][0], {"type": "Ellipsoid", "a": 0.4, "b": 0.7, "c": 0.9}]
+        f["particles.typeid"] = (np.arange(216) % 2).astype(np.uint32)
+        bad.append(("shapes differ", f))
+        f = lattice_frame(rng); f["particles.position"][1] = f["particles.position"][0]
+        bad.append(("overlapping pairs", f))
+        bad.append(("too small", lattice_frame(rng, spacing=0.8)))
+        for k, (what, frame) in enumerate(bad):
+            p = os.path.join(d, f"bad{k}.gsd")
+            write_gsd(p, [frame])
+            rc, out, err = run(["--from", p, "--equil", "1", "--sweeps", "1"])
+            check(rc == 2 and what in err, f"--from, {what}: exit 2 and a message (got {rc}: {err.strip()})")
+        # malformed files
+        good = open(path, "rb").read()
+        malformed = {"truncated": good[:len(good) // 2], "header only": good[:256], "empty": b"",
+                     "magic": b"\0" * 8 + good[8:], "index": good[:8] + (2 ** 62).to_bytes(8, "little") + good[16:]}
+        for what, data in malformed.items():
+            p = os.path.join(d, "bad.gsd")
+            open(p, "wb").write(data)
+            rc, out, err = run(["--from", p])
+            check(rc == 2 and err.startswith("pw85_mc: --from"), f"--from, {what} file: exit 2 and a message (got {rc}: {err.strip()})")
+        for args in (["--from", path, "--n", "300"], ["--from", path, "--axes", "1", "1", "1"], ["--frame", "1"],
+                     ["--from", path, "--frame", "2"], ["--from", os.path.join(d, "missing.gsd")]):
+            rc, out, err = run(args)
+            check(rc == 2 and err.startswith("pw85_mc: "), f"{args}: exit 2 and a message (got {rc}: {err.strip()})")
+
+        # pw85_mc's own file as a start
+        own = os.path.join(d, "own.gsd")
+        rc, out, _ = run(["--n", "300", "--aspect", "3", "--phi", "0.3", "--equil", "5", "--sweeps", "2", "--gsd", own])
+        rc2, out2, err2 = run(["--from", own, "--equil", "2", "--sweeps", "2"])
+        check(rc == 0 and rc2 == 0 and "300 prolate spheroids (semi-axes 0.5 0.5 1.5)" in out2,
+              f"--from a file of pw85_mc: exit 0 (got {rc2}: {err2})")
+
+
 def main():
     rc, out, err = run(["--help"])
     check(rc == 0 and out.startswith("usage: pw85_mc"), "--help: exit 0, usage on stdout")
     for bad in (["--bogus"], ["--n"], ["--n", "x"], ["--n", "1"], ["--phi", "0.7"], ["--sweeps", "-1"],
-                ["--aspect", "0"], ["--target", "1.5"], ["--seed", "-3"], ["--n", "300", "--xyz",
+                ["--aspect", "0"], ["--target", "1.5"], ["--seed", "-3"], ["--axes", "1", "2"], ["--axes", "0", "1", "1"], ["--n", "300", "--xyz",
                 "/nonexistent/dir/c.xyz"], ["--n", "300", "--gsd", "/nonexistent/dir/c.gsd"]):
         rc, out, err = run(bad)
         check(rc == 2 and "pw85_mc: " in err, f"{bad}: exit 2 and a message (got {rc})")
@@ -196,6 +351,9 @@ def main():
           is not None, "--equil 0: fixed steps reported first; --blocks above --sweeps: one block per sweep")
     rc, out, _ = run(["--n", "300", "--aspect", "0.3", "--phi", "0.3", "--equil", "4", "--sweeps", "4"])
     check(rc == 0 and "oblate" in out and "OK: no overlapping pair" in out, "oblate spheroids: exit 0")
+
+    check_general_ellipsoids()
+    check_from_gsd()
 
     if FAILURES:
         print(f"{len(FAILURES)} failures")

@@ -333,6 +333,114 @@ static void test_move_brute_force(void) {
     }
 }
 
+/* |r|^2 of the nearest image of r = c_j - c_i (periodic: the lattice
+ * vectors a1 = (Lx, 0, 0), a2 = (xy Ly, Ly, 0), a3 = (xz Lz, yz Lz, Lz);
+ * the fractional coordinates rounded, then the 5^3 images around them),
+ * in long double. */
+static long double nearest_distance2(config const *cf, double const ci[3], double const cj[3]) {
+  long double r[3] = {(long double)cj[0] - ci[0], (long double)cj[1] - ci[1],
+                      (long double)cj[2] - ci[2]};
+  if (!cf->periodic) return r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+  double const *b = cf->box;
+  long double const a[3][3] = {{b[0], 0, 0},
+                               {(long double)b[3] * b[1], b[1], 0},
+                               {(long double)b[4] * b[2], (long double)b[5] * b[2], b[2]}};
+  long double f[3];
+  f[2] = r[2] / a[2][2];
+  f[1] = (r[1] - f[2] * a[2][1]) / a[1][1];
+  f[0] = (r[0] - f[1] * a[1][0] - f[2] * a[2][0]) / a[0][0];
+  long double best = INFINITY;
+  for (int u = -2; u <= 2; u++)
+    for (int v = -2; v <= 2; v++)
+      for (int w = -2; w <= 2; w++) {
+        long double const n[3] = {roundl(f[0]) + u, roundl(f[1]) + v, roundl(f[2]) + w};
+        long double x2 = 0;
+        for (int d = 0; d < 3; d++) {
+          long double const x = r[d] - n[0] * a[0][d] - n[1] * a[1][d] - n[2] * a[2][d];
+          x2 += x * x;
+        }
+        if (x2 < best) best = x2;
+      }
+  return best;
+}
+
+/* pw85_configuration_neighbours against the nearest image in long double:
+ * every j closer than distance (1 - 1e-9) listed, none farther than
+ * distance (1 + 1e-9), ascending; open, periodic and tilted, before and
+ * after moves (particles leaving their cells), the count query. */
+static void test_neighbours_brute_force(void) {
+  for (int variant = 0; variant < 3; variant++) {
+    config cf;
+    int const periodic = variant > 0, tilted = variant == 2;
+    make_config(&cf, 300, variant == 1 ? 3 : 0, 8, periodic, tilted, 91 + variant);
+    pw85_configuration *conf = NULL;
+    g_assert_cmpint(pw85_configuration_create(cf.n, cf.c, cf.q, periodic ? cf.box : NULL, &conf,
+                                              NULL),
+                    ==, PW85_OK);
+    double const lmin = fmin(cf.box[0], fmin(cf.box[1], cf.box[2]));
+    double const distances[] = {0.0, 0.05 * lmin, 0.2 * lmin, 0.37 * lmin, 0.5 * lmin * (1 - 2e-9)};
+    GRand *rng = g_rand_new_with_seed(400 + variant);
+    long long *j = g_new(long long, cf.n);
+    long long listed = 0;
+    for (int t = 0; t < 200; t++) {
+      long long const i = g_rand_int_range(rng, 0, cf.n);
+      if (t % 2 == 1) { /* move particle i (out of the box one time in four) */
+        double c[3];
+        for (int d = 0; d < 3; d++)
+          c[d] = cf.c[3 * i + d] + g_rand_double_range(rng, -0.3, 0.3) * lmin +
+                 (t % 4 == 1 ? 3 * cf.box[d] * periodic : 0);
+        g_assert_cmpint(pw85_configuration_move(conf, i, c, cf.q + 6 * i), ==, PW85_OK);
+        memcpy(cf.c + 3 * i, c, sizeof c);
+      }
+      double const distance = distances[t % G_N_ELEMENTS(distances)];
+      long long count = -1;
+      g_assert_cmpint(pw85_configuration_neighbours(conf, i, distance, 0, NULL, &count), ==,
+                      count == 0 ? PW85_OK : PW85_ERR_CAPACITY);
+      long long const first_count = count;
+      g_assert_cmpint(pw85_configuration_neighbours(conf, i, distance, cf.n, j, &count), ==,
+                      PW85_OK);
+      g_assert_cmpint(count, ==, first_count);
+      long long k = 0;
+      for (long long b = 0; b < cf.n; b++) {
+        if (b == i) continue;
+        long double const r2 = nearest_distance2(&cf, cf.c + 3 * i, cf.c + 3 * b);
+        long double const lo = (long double)distance * (1 - 1e-9L), hi = (long double)distance * (1 + 1e-9L);
+        int const listed_b = k < count && j[k] == b;
+        if (r2 < lo * lo && !listed_b)
+          g_error("variant %d: particle %lld missing from the neighbours of %lld (%Lg < %g)", variant, b,
+                  i, sqrtl(r2), distance);
+        if (r2 >= hi * hi && listed_b)
+          g_error("variant %d: particle %lld listed as a neighbour of %lld (%Lg >= %g)", variant, b, i,
+                  sqrtl(r2), distance);
+        k += listed_b;
+      }
+      g_assert_cmpint(k, ==, count); /* ascending, no duplicates, no i */
+      listed += count;
+    }
+    g_assert_cmpint(listed, >, 1000);
+    /* Bad input: nothing written. */
+    long long count = -5;
+    j[0] = -5;
+    g_assert_cmpint(pw85_configuration_neighbours(conf, -1, 1.0, cf.n, j, &count), ==, PW85_ERR_INVALID_ARGUMENT);
+    g_assert_cmpint(pw85_configuration_neighbours(conf, cf.n, 1.0, cf.n, j, &count), ==, PW85_ERR_INVALID_ARGUMENT);
+    g_assert_cmpint(pw85_configuration_neighbours(conf, 0, -1.0, cf.n, j, &count), ==, PW85_ERR_INVALID_ARGUMENT);
+    g_assert_cmpint(pw85_configuration_neighbours(conf, 0, NAN, cf.n, j, &count), ==, PW85_ERR_INVALID_ARGUMENT);
+    g_assert_cmpint(pw85_configuration_neighbours(conf, 0, INFINITY, cf.n, j, &count), ==, PW85_ERR_INVALID_ARGUMENT);
+    g_assert_cmpint(pw85_configuration_neighbours(conf, 0, 1.0, -1, j, &count), ==, PW85_ERR_INVALID_ARGUMENT);
+    g_assert_cmpint(pw85_configuration_neighbours(conf, 0, 1.0, 1, NULL, &count), ==, PW85_ERR_INVALID_ARGUMENT);
+    g_assert_cmpint(pw85_configuration_neighbours(conf, 0, 1.0, cf.n, j, NULL), ==, PW85_ERR_INVALID_ARGUMENT);
+    g_assert_cmpint(pw85_configuration_neighbours(NULL, 0, 1.0, cf.n, j, &count), ==, PW85_ERR_INVALID_ARGUMENT);
+    g_assert_cmpint(pw85_configuration_neighbours(conf, 0, 0.5 * lmin, cf.n, j, &count), ==,
+                    periodic ? PW85_ERR_INVALID_ARGUMENT : PW85_OK);
+    if (periodic) g_assert_cmpint(count, ==, -5);
+    g_assert_cmpint(j[0], ==, periodic ? -5 : j[0]);
+    g_free(j);
+    g_rand_free(rng);
+    pw85_configuration_destroy(conf);
+    config_free(&cf);
+  }
+}
+
 /* update: a new configuration replaces the old one (same n, then larger),
  * the pairs follow. */
 static void test_update(void) {
@@ -524,6 +632,40 @@ static void test_bad_input(void) {
   g_assert_cmpstr(pw85_strerror(PW85_ERR_NO_MEMORY), ==, "memory allocation failed");
 }
 
+/* Two ellipsoids whose matrices are scaled by 2^k, k = 0 ... 1000, centres
+ * at distance sqrt(5): each centre lies inside the other ellipsoid (the
+ * smallest eigenvalue of each base matrix is above 0.3 by Gershgorin, so
+ * r^T Q^-1 r <= 5 / (0.3 2^k) < 1 from k = 5), so the pair overlaps at
+ * every scale from k = 5 on. The broad phase's plane test meets overflowing
+ * support values (inf - inf) from k = 341: it must decline there, not
+ * separate the pair. Checked: the pair is found by pw85_configuration_pairs
+ * and by a trial move, as pw85_overlap finds it. */
+static void test_pairs_huge_matrices(void) {
+  double const base1[6] = {2.0, -1.0, 0.5, 2.0, -0.7, 2.0};
+  double const base2[6] = {1.5, 0.6, -0.4, 2.5, 0.3, 1.0};
+  int missed = 0;
+  for (int k = 5; k <= 1000; k++) {
+    double q[12], centres[6] = {0.0, 0.0, 0.0, 1.0, 2.0, 0.0};
+    for (int t = 0; t < 6; t++) {
+      q[t] = ldexp(base1[t], k);
+      q[6 + t] = ldexp(base2[t], k);
+    }
+    pw85_configuration *cf = NULL;
+    g_assert_cmpint(pw85_configuration_create(2, centres, q, NULL, &cf, NULL), ==, PW85_OK);
+    long long i[1], j[1], count = -1, moved = -7;
+    int const s = pw85_configuration_pairs(cf, 1.0, 1, 1, i, j, NULL, &count, NULL);
+    int const sm = pw85_configuration_test_move(cf, 1, centres + 3, q + 6, &moved);
+    g_assert_cmpint(pw85_overlap(centres + 3, q, q + 6), ==, 1);
+    if (s != PW85_OK || count != 1 || sm != PW85_OK || moved != 0) {
+      missed++;
+      g_test_message("k = %d: pairs status %d count %lld, test_move status %d j %lld", k, s,
+                     count, sm, moved);
+    }
+    pw85_configuration_destroy(cf);
+  }
+  g_assert_cmpint(missed, ==, 0);
+}
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   g_test_add_func("/pw85_configuration_pairs/open", test_pairs_open);
@@ -531,8 +673,10 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_configuration_pairs/triclinic", test_pairs_triclinic);
   g_test_add_func("/pw85_configuration_pairs/dense", test_pairs_dense);
   g_test_add_func("/pw85_configuration_pairs/large_box", test_pairs_large);
+  g_test_add_func("/pw85_configuration_pairs/huge_matrices", test_pairs_huge_matrices);
   g_test_add_func("/pw85_configuration_test_move/brute_force", test_move_brute_force);
   g_test_add_func("/pw85_configuration_update/brute_force", test_update);
+  g_test_add_func("/pw85_configuration_neighbours/brute_force", test_neighbours_brute_force);
   g_test_add_func("/pw85_configuration/bad_input", test_bad_input);
   return g_test_run();
 }

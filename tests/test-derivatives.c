@@ -160,11 +160,36 @@ static void conditioning(const double r[3], const double q1[6], const double q2[
   mx->ch = fmax(mx->ch, sym_norm(eh) / sym_norm(o->h));
 }
 
+/* PW85_DERIVATIVES_FORCES against the full call of the pair, whose status
+ * is full_status and fields *full (include/pw85.h): where the full call
+ * returns PW85_OK or PW85_ERR_INACCURATE, the same status, the same bits in
+ * mu2, lambda, d_r12, d_theta1 and d_theta2 (the first 11 doubles), and NaN
+ * in d_q1, d_q2 and hess_r12. Returns 1 when the pair was compared. */
+static int check_forces_pair(const double r[3], const double q1[6], const double q2[6],
+                             int full_status, const pw85_derivatives_t *full) {
+  if (full_status != PW85_OK && full_status != PW85_ERR_INACCURATE) return 0;
+  pw85_derivatives_t f;
+  g_assert_cmpint(pw85_contact_derivatives_ex(r, q1, q2, PW85_DERIVATIVES_FORCES, &f), ==,
+                  full_status);
+  g_assert_cmpmem(&f, 11 * sizeof(double), full, 11 * sizeof(double));
+  for (int k = 0; k < 6; k++) {
+    g_assert_true(isnan(f.d_q1[k]));
+    g_assert_true(isnan(f.d_q2[k]));
+    g_assert_true(isnan(f.hess_r12[k]));
+  }
+  pw85_derivatives_t a;  /* PW85_DERIVATIVES_ALL: the call without flags, bit for bit */
+  g_assert_cmpint(pw85_contact_derivatives_ex(r, q1, q2, PW85_DERIVATIVES_ALL, &a), ==,
+                  full_status);
+  g_assert_cmpmem(&a, sizeof a, full, sizeof a);
+  return 1;
+}
+
 static void check_pair(const double r[3], const double q1[6], const double q2[6], maxima *mx,
                        GRand *rng) {
   pw85_derivatives_t d;
   int st = pw85_contact_derivatives(r, q1, q2, &d);
   g_assert_cmpint(st, ==, PW85_OK);
+  check_forces_pair(r, q1, q2, st, &d);
   quad R[3], A[6], B[6];
   to_quad(r, R, 3);
   to_quad(q1, A, 6);
@@ -419,6 +444,91 @@ static void test_bad_input(void) {
   g_assert_true(all_nan(&d));
   g_assert_cmpint(pw85_contact_derivatives(r, q, notspd, &d), ==, PW85_ERR_NOT_SPD);
   g_assert_true(all_nan(&d));
+  /* flags other than PW85_DERIVATIVES_ALL and PW85_DERIVATIVES_FORCES */
+  unsigned const bad_flags[] = {2u, 3u, 0x80000000u, ~0u};
+  for (size_t i = 0; i < sizeof bad_flags / sizeof bad_flags[0]; i++) {
+    g_assert_cmpint(pw85_contact_derivatives(r, q, q, &d), ==, PW85_OK);
+    g_assert_cmpint(pw85_contact_derivatives_ex(r, q, q, bad_flags[i], &d), ==,
+                    PW85_ERR_INVALID_ARGUMENT);
+    g_assert_true(all_nan(&d));
+  }
+  g_assert_cmpint(pw85_contact_derivatives_ex(r, q, q, PW85_DERIVATIVES_FORCES, NULL), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_contact_derivatives_ex(zero, q, q, PW85_DERIVATIVES_FORCES, &d), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+  g_assert_true(all_nan(&d));
+  g_assert_cmpint(pw85_contact_derivatives_ex(r, q, notspd, PW85_DERIVATIVES_FORCES, &d), ==,
+                  PW85_ERR_NOT_SPD);
+  g_assert_true(all_nan(&d));
+}
+
+/* n ellipsoids of semi-axes in [amin, 1], random orientations, centres in
+ * [0, side)^3, and m random pairs (i, j), i != j, with their per-pair arrays
+ * r12 = c_j - c_i, q1 = q_i, q2 = q_j. */
+static void random_scene(GRand *rng, int n, int m, double amin, double side, double *centres,
+                         double *q, long long *pairs, double *r12, double *q1, double *q2) {
+  for (int i = 0; i < n; i++) {
+    double rad[3], ax[9];
+    random_radii(rng, amin, 1.0, rad);
+    random_axes(rng, ax);
+    make_q(rad, ax, q + 6 * i);
+    for (int c = 0; c < 3; c++) centres[3 * i + c] = g_rand_double_range(rng, 0.0, side);
+  }
+  for (int k = 0; k < m; k++) {
+    int i = g_rand_int_range(rng, 0, n), j = (i + 1 + g_rand_int_range(rng, 0, n - 1)) % n;
+    pairs[2 * k] = i;
+    pairs[2 * k + 1] = j;
+    for (int c = 0; c < 3; c++) r12[3 * k + c] = centres[3 * j + c] - centres[3 * i + c];
+    memcpy(q1 + 6 * k, q + 6 * i, sizeof(double[6]));
+    memcpy(q2 + 6 * k, q + 6 * j, sizeof(double[6]));
+  }
+}
+
+/* The batch forms with PW85_DERIVATIVES_FORCES: bitwise the one-pair
+ * PW85_DERIVATIVES_FORCES call (and so the full call's fields, above), for
+ * 1000 random pairs of semi-axes in [0.001, 1] (lanes and their fallbacks);
+ * bad flags write nothing. */
+static void test_batch_forces(void) {
+  GRand *rng = g_rand_new_with_seed(23);
+  enum { N = 200, M = 1000 };
+  static double centres[3 * N], q[6 * N], r12[3 * M], q1[6 * M], q2[6 * M];
+  static long long pairs[2 * M];
+  static pw85_derivatives_t d[M], ds[M];
+  static int status[M], status_s[M];
+  random_scene(rng, N, M, 0.001, 3.0, centres, q, pairs, r12, q1, q2);
+  int compared = 0;
+  for (int nt = 0; nt <= 2; nt += 2) {
+    g_assert_cmpint(pw85_contact_derivatives_pairs_ex(M, r12, q1, q2, PW85_DERIVATIVES_FORCES, d,
+                                                      status, nt), ==, PW85_OK);
+    g_assert_cmpint(pw85_scene_contact_derivatives_ex(N, centres, q, NULL, M, pairs,
+                                                      PW85_DERIVATIVES_FORCES, ds, status_s, nt),
+                    ==, PW85_OK);
+    for (int k = 0; k < M; k++) {
+      pw85_derivatives_t one, full;
+      int const s = pw85_contact_derivatives_ex(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k,
+                                                PW85_DERIVATIVES_FORCES, &one);
+      g_assert_cmpint(status[k], ==, s);
+      g_assert_cmpint(status_s[k], ==, s);
+      g_assert_cmpmem(&one, sizeof one, d + k, sizeof one);
+      g_assert_cmpmem(&one, sizeof one, ds + k, sizeof one);
+      compared += check_forces_pair(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k,
+                                    pw85_contact_derivatives(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k,
+                                                             &full), &full);
+    }
+  }
+  g_assert_cmpint(compared, ==, 2 * M);
+  /* bad flags: PW85_ERR_INVALID_ARGUMENT, nothing written */
+  memset(status, 0x7f, sizeof status);
+  memset(d, 0x7f, sizeof d);
+  g_assert_cmpint(pw85_contact_derivatives_pairs_ex(M, r12, q1, q2, 2u, d, status, 0), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(pw85_scene_contact_derivatives_ex(N, centres, q, NULL, M, pairs, ~0u, d,
+                                                    status, 0), ==, PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(status[0], ==, 0x7f7f7f7f);
+  g_assert_cmpint(status[M - 1], ==, 0x7f7f7f7f);
+  unsigned char const *bytes = (unsigned char const *)d;
+  for (size_t i = 0; i < sizeof d; i++) g_assert_cmpint(bytes[i], ==, 0x7f);
+  g_rand_free(rng);
 }
 
 /* Batch forms: bitwise the one-pair call, per-pair statuses, lowest failing
@@ -428,21 +538,7 @@ static void test_batch(void) {
   enum { N = 40, M = 100 };
   double centres[3 * N], q[6 * N], r12[3 * M], q1[6 * M], q2[6 * M];
   long long pairs[2 * M];
-  for (int i = 0; i < N; i++) {
-    double rad[3], ax[9];
-    random_radii(rng, 0.1, 1.0, rad);
-    random_axes(rng, ax);
-    make_q(rad, ax, q + 6 * i);
-    for (int d = 0; d < 3; d++) centres[3 * i + d] = g_rand_double_range(rng, 0.0, 10.0);
-  }
-  for (int k = 0; k < M; k++) {
-    int i = g_rand_int_range(rng, 0, N), j = (i + 1 + g_rand_int_range(rng, 0, N - 1)) % N;
-    pairs[2 * k] = i;
-    pairs[2 * k + 1] = j;
-    for (int d = 0; d < 3; d++) r12[3 * k + d] = centres[3 * j + d] - centres[3 * i + d];
-    memcpy(q1 + 6 * k, q + 6 * i, sizeof(double[6]));
-    memcpy(q2 + 6 * k, q + 6 * j, sizeof(double[6]));
-  }
+  random_scene(rng, N, M, 0.1, 10.0, centres, q, pairs, r12, q1, q2);
   q1[6 * 37] = NAN;    /* pair 37 fails in the per-pair form */
   pairs[2 * 53] = N;   /* pair 53 out of range in the scene form */
   pw85_derivatives_t d[M], one;
@@ -588,6 +684,7 @@ static void test_far_pairs(void) {
     int const s = pw85_contact_derivatives(r, q, q, &d);
     if (s != PW85_OK) g_test_message("k = %d: status %d", k, s);
     g_assert_cmpint(s, ==, PW85_OK);
+    g_assert_true(check_forces_pair(r, q, q, s, &d));
     double const mu2 = ldexp(1.0, 2 * k - 2);
     g_assert_cmpfloat(rel_error(d.mu2, mu2), <=, 4 * DBL_EPSILON);
     g_assert_cmpfloat(fabs(d.lambda - 0.5), <=, 4 * DBL_EPSILON);
@@ -624,6 +721,10 @@ static void test_matrix_ratio(void) {
       for (int i = 0; i < 6; i++) q2[i] = ldexp(qa[w][i], k);
       double const *q1 = qa[0];
       pw85_result res;
+      {
+        pw85_derivatives_t full;
+        check_forces_pair(r, q1, q2, pw85_contact_derivatives(r, q1, q2, &full), &full);
+      }
       if (pw85_contact_function_method(r, q1, q2, PW85_METHOD_DEFAULT, &res) != PW85_OK) continue;
       if (fmin(res.lambda, 1.0 - res.lambda) < 1e-15) {
         beyond++;
@@ -670,5 +771,6 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact_derivatives/bad-input", test_bad_input);
   g_test_add_func("/pw85_contact_derivatives/batch/forms", test_batch);
   g_test_add_func("/pw85_contact_derivatives/batch/lanes", test_batch_lanes);
+  g_test_add_func("/pw85_contact_derivatives/batch/forces", test_batch_forces);
   return g_test_run();
 }

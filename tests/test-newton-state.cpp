@@ -3,7 +3,7 @@
  * on the state it hands to its callers: every field of NewtonState is
  * written on every return, also when an evaluation of f fails after
  * successful ones (Q(lambda) not numerically positive definite), so that
- * the callers (contact_newton, DEFAULT's steps 2-4 in default.cpp) never
+ * the callers (contact_newton, DEFAULT's general method in default.hpp) never
  * read memory the iteration left unwritten. The state is filled with two
  * different byte patterns before the call; the two results must be
  * bitwise equal. Compiled with newton.cpp itself, since newton_iterate is

@@ -1,14 +1,14 @@
-/* The rational step of PW85_METHOD_DEFAULT on x86-64-v4 (src/core/
- * eval/f_rational_dd.hpp; docs/methods.md, "PW85_METHOD_DEFAULT"), tested at
+/* The coefficient step of PW85_METHOD_DEFAULT on x86-64-v4 (src/core/
+ * eval/f_coefficients_dd.hpp; docs/methods.md, "PW85_METHOD_DEFAULT"), tested at
  * the library level: the one test program that includes internal headers,
  * because the public API cannot tell which path a call took. It checks the
  * error bounds the code states, against references computed here in
  * __float128 from the same double inputs (every product of two doubles is
  * exact in binary128, and the few roundings of the references, at 2^-113
  * of their terms, stay far below u for the cancellations these pairs have):
- *  - whenever rational_coefficients_dd accepts, each of the seven
+ *  - whenever coefficients_dd accepts, each of the seven
  *    coefficients (M13) is within 2.2 u of the exact value;
- *  - f_eval_rational's f is within kRationalRel = 16 u of the exact f (from
+ *  - f_eval_coefficients's f is within kCoefficientRel = 16 u of the exact f (from
  *    the exact coefficients), and its f' within the bound edf it returns;
  *  - det_precise (d0, d3 where the double-double sum cancels beyond its
  *    bound) is within 1.13 u of det Q whenever it accepts, against the
@@ -16,7 +16,7 @@
  *    __float128 reference loses 2^-113 of the terms, too much for the
  *    cancellations, up to 2^75, of these pairs), and accepts such pairs;
  *  - a pair whose d0 cancels beyond what the double-double sums certify
- *    (det Q1 ~ 1e-15 of its terms) still takes the rational step, through
+ *    (det Q1 ~ 1e-15 of its terms) still takes the coefficient step, through
  *    det_precise; a singular Q1 (det = 0) is declined.
  * Skipped where the library has no x86-64-v4 variants (CPU without AVX-512,
  * or built with -Disa_dispatch=false). */
@@ -25,7 +25,7 @@
 #include <glib.h>
 
 #include "arith/bigint.hpp"
-#include "eval/f_rational_dd.hpp"
+#include "eval/f_coefficients_dd.hpp"
 #include "../bench/bench_common.hpp"
 
 namespace {
@@ -40,20 +40,20 @@ struct Pair {
 };
 
 // The kernel and the evaluation compiled for x86-64-v4, as in the library
-// (default.cpp inlines them into its v4 variant).
+// (default_variants.cpp inlines them into its v4 variant).
 // dd_ok: the double-double coefficients passed (without det_precise).
 __attribute__((target("arch=x86-64-v4"), noinline)) bool coefficients_v4(Pair const &p,
-                                                                        pw85::RationalDD &k,
+                                                                        pw85::CoefficientsDD &k,
                                                                         bool *dd_ok = nullptr) {
-  bool const dd = pw85::rational_coefficients_dd(p.r, p.q1, p.q2, k);
+  bool const dd = pw85::coefficients_dd(p.r, p.q1, p.q2, k);
   if (dd_ok) *dd_ok = dd;
-  return dd || pw85::rational_dets_precise(p.q1, p.q2, k);
+  return dd || pw85::coefficients_dets_precise(p.q1, p.q2, k);
 }
 
 __attribute__((target("arch=x86-64-v4"), noinline)) bool eval_v4(double lambda,
-                                                                pw85::RationalDD const &k,
-                                                                pw85::RatEval &e) {
-  return pw85::f_eval_rational(lambda, k, e);
+                                                                pw85::CoefficientsDD const &k,
+                                                                pw85::CoefficientEval &e) {
+  return pw85::f_eval_coefficients(lambda, k, e);
 }
 
 __attribute__((target("arch=x86-64-v4"), noinline)) bool det_v4(pw85::Sym3 const &q,
@@ -243,7 +243,7 @@ constexpr int kPairsPerClass = 4000;
 
 void test_coefficients(void) {
   if (!__builtin_cpu_supports("x86-64-v4")) {
-    g_test_skip("CPU without x86-64-v4 (AVX-512): the rational step is not used");
+    g_test_skip("CPU without x86-64-v4 (AVX-512): the coefficient step is not used");
     return;
   }
   bench::Rng g{20261122};
@@ -253,7 +253,7 @@ void test_coefficients(void) {
     int dd_failed = 0, rescued = 0;
     for (int n = 0; n < kPairsPerClass; ++n) {
       Pair const p = random_pair(g, cl.lo, cl.hi);
-      pw85::RationalDD k;
+      pw85::CoefficientsDD k;
       ++total;
       bool dd_ok;
       bool const ok = coefficients_v4(p, k, &dd_ok);
@@ -282,7 +282,7 @@ void test_coefficients(void) {
   }
   g_test_message("coefficients: %d of %d pairs accepted; max relative error of a0, a1, a2, d1, d2 %.3f u", accepted,
                  total, worst / kU);
-  // Most pairs must take the rational step (otherwise it is not tested).
+  // Most pairs must take the coefficient step (otherwise it is not tested).
   g_assert_cmpint(accepted, >=, total * 9 / 10);
 }
 
@@ -291,7 +291,7 @@ void test_coefficients(void) {
 // matrix of classes 0-3 (cancellation up to ~2^75, far below its 2^87).
 void test_det_precise(void) {
   if (!__builtin_cpu_supports("x86-64-v4")) {
-    g_test_skip("CPU without x86-64-v4 (AVX-512): the rational step is not used");
+    g_test_skip("CPU without x86-64-v4 (AVX-512): the coefficient step is not used");
     return;
   }
   bench::Rng g{4127};
@@ -329,7 +329,7 @@ void test_det_precise(void) {
 
 void test_f_bounds(void) {
   if (!__builtin_cpu_supports("x86-64-v4")) {
-    g_test_skip("CPU without x86-64-v4 (AVX-512): the rational step is not used");
+    g_test_skip("CPU without x86-64-v4 (AVX-512): the coefficient step is not used");
     return;
   }
   bench::Rng g{20261123};
@@ -337,15 +337,15 @@ void test_f_bounds(void) {
   for (Class const &cl : kClasses)
     for (int n = 0; n < kPairsPerClass; ++n) {
       Pair const p = random_pair(g, cl.lo, cl.hi);
-      pw85::RationalDD k;
+      pw85::CoefficientsDD k;
       if (!coefficients_v4(p, k)) continue;
       real c[7];
       exact_coefficients(p, c);
       double const lambdas[3] = {g.uniform(), 1e-6 + 1e-3 * g.uniform(), 1.0 - 1e-3 * g.uniform()};
       for (double const lambda : lambdas) {
         if (!(lambda > 0.0 && lambda < 1.0)) continue;
-        pw85::RatEval e;
-        if (!eval_v4(lambda, k, e)) g_error("f_eval_rational failed at %g", lambda);
+        pw85::CoefficientEval e;
+        if (!eval_v4(lambda, k, e)) g_error("f_eval_coefficients failed at %g", lambda);
         real f, df;
         exact_f(c, lambda, f, df);
         double const ef = std::fabs(rel(e.f, f));
@@ -363,18 +363,18 @@ void test_f_bounds(void) {
 
 void test_cancellation(void) {
   if (!__builtin_cpu_supports("x86-64-v4")) {
-    g_test_skip("CPU without x86-64-v4 (AVX-512): the rational step is not used");
+    g_test_skip("CPU without x86-64-v4 (AVX-512): the coefficient step is not used");
     return;
   }
   // Q1 = diag(1, 1, 1e-15) rotated: det Q1 = 1e-15 while the terms of its
   // double-double sum are ~1, a cancellation of 1e15 > 2^45 (the bound's
-  // limit, f_rational_dd.hpp): d0 comes from det_precise.
+  // limit, f_coefficients_dd.hpp): d0 comes from det_precise.
   double const c = std::cos(0.3), s = std::sin(0.3), e = 1e-15;
   Pair p;
   p.q1 = pw85::Sym3{{c * c + s * s * e, c * s * (1 - e), 0.0, s * s + c * c * e, 0.0, 1.0}};
   p.q2 = pw85::Sym3{{2.0, 0.1, 0.2, 3.0, 0.3, 4.0}};
   p.r = pw85::Vec3{{1.0, 2.0, 3.0}};
-  pw85::RationalDD k;
+  pw85::CoefficientsDD k;
   g_assert_true(coefficients_v4(p, k));
   g_assert_true(det_within(p.q1, k.c[3] / k.scale, 11, 5));
   // The same matrices with the small eigenvalue 1e-6: certified.

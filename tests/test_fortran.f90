@@ -36,7 +36,7 @@ program test_fortran
   integer(c_long_long) :: ci(3), cj(3), count, jfound, bad
 
   write (*, '(a)') 'TAP version 13'
-  write (*, '(a)') '1..38'
+  write (*, '(a)') '1..45'
 
   ! Version: the loaded library and the module constant agree.
   version = pw85_version_string()
@@ -166,6 +166,44 @@ program test_fortran
              statuses(2) == PW85_ERR_INVALID_ARGUMENT .and. &
              all(derivs(1)%d_r12 == deriv%d_r12) .and. derivs(2)%mu2 /= derivs(2)%mu2, &
              'pw85_contact_derivatives_pairs: pair 1 as the one-pair call, r12 = 0 fails with NaN')
+  ! PW85_DERIVATIVES_FORCES: mu2, lambda, gradient and torques bitwise the
+  ! full call's, d_q1, d_q2 and the Hessian NaN; other flags are invalid.
+  block
+    type(pw85_derivatives_t) :: light, lights(2), scene_light(1)
+    integer(c_long_long) :: one_pair(2, 1)
+    real(c_double) :: centres2(3, 2), qs2(6, 2)
+    status = pw85_contact_derivatives_ex(r12, q1, q2, PW85_DERIVATIVES_FORCES, light)
+    call check(status == PW85_OK .and. light%mu2 == deriv%mu2 .and. &
+               light%lambda == deriv%lambda .and. all(light%d_r12 == deriv%d_r12) .and. &
+               all(light%d_theta1 == deriv%d_theta1) .and. &
+               all(light%d_theta2 == deriv%d_theta2) .and. &
+               all(light%d_q1 /= light%d_q1) .and. all(light%d_q2 /= light%d_q2) .and. &
+               all(light%hess_r12 /= light%hess_r12), &
+               'pw85_contact_derivatives_ex FORCES: the full call''s forces and torques, the rest NaN')
+    status = pw85_contact_derivatives_ex(r12, q1, q2, 2_c_int, light)
+    call check(status == PW85_ERR_INVALID_ARGUMENT .and. light%mu2 /= light%mu2, &
+               'pw85_contact_derivatives_ex: flags 2 is invalid, NaN')
+    status = pw85_contact_derivatives_pairs_ex(2_c_long_long, r12s, q1s, q2s, &
+                                               PW85_DERIVATIVES_FORCES, lights, statuses, 1_c_int)
+    call check(status == PW85_ERR_INVALID_ARGUMENT .and. statuses(1) == PW85_OK .and. &
+               all(lights(1)%d_r12 == deriv%d_r12) .and. &
+               all(lights(1)%d_theta2 == deriv%d_theta2) .and. &
+               lights(1)%hess_r12(1) /= lights(1)%hess_r12(1), &
+               'pw85_contact_derivatives_pairs_ex FORCES: pair 1 as the full call')
+    centres2(:, 1) = 0.0_c_double
+    centres2(:, 2) = r12
+    qs2(:, 1) = q1
+    qs2(:, 2) = q2
+    one_pair(:, 1) = [0_c_long_long, 1_c_long_long]
+    status = pw85_scene_contact_derivatives_ex(2_c_long_long, centres2, qs2, m=1_c_long_long, &
+                                               pairs=one_pair, flags=PW85_DERIVATIVES_FORCES, &
+                                               d=scene_light, nthreads=1_c_int)
+    call check(status == PW85_OK .and. all(scene_light(1)%d_r12 == deriv%d_r12) .and. &
+               all(scene_light(1)%d_theta1 == deriv%d_theta1) .and. &
+               scene_light(1)%mu2 == deriv%mu2 .and. &
+               scene_light(1)%d_q2(1) /= scene_light(1)%d_q2(1), &
+               'pw85_scene_contact_derivatives_ex FORCES: the full call''s fields, d_q NaN')
+  end block
   ! First contact time: unit spheres 3 apart closing at unit speed touch at
   ! t = 1; spinning spheres change nothing.
   block
@@ -293,6 +331,20 @@ program test_fortran
                                     count=count)
   call check(status == PW85_OK .and. count == 0, &
              'pw85_configuration_pairs: no overlap after the move')
+  ! Neighbours by centre distance: particle 1 at |r12| from particle 0,
+  ! particle 2 at |(100, 100, 100)|.
+  status = pw85_configuration_neighbours(conf, 0_c_long_long, 1.01_c_double * norm2(r12), &
+                                         3_c_long_long, cj, count)
+  call check(status == PW85_OK .and. count == 1 .and. cj(1) == 1, &
+             'pw85_configuration_neighbours: particle 1 within 1.01 |r12| of particle 0')
+  status = pw85_configuration_neighbours(conf, 0_c_long_long, 0.99_c_double * norm2(r12), &
+                                         3_c_long_long, cj, count)
+  call check(status == PW85_OK .and. count == 0, &
+             'pw85_configuration_neighbours: none within 0.99 |r12|')
+  status = pw85_configuration_neighbours(conf, 0_c_long_long, 200.0_c_double, 0_c_long_long, &
+                                         count=count)
+  call check(status == PW85_ERR_CAPACITY .and. count == 2, &
+             'pw85_configuration_neighbours: capacity 0 gives the count')
   call pw85_configuration_destroy(conf)
 
   ! Main-program allocatables are not freed automatically at the end; free

@@ -857,10 +857,18 @@ def contact(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: int = 0,
                          nthreads, check)
 
 
+# The flags argument of the _ex derivatives calls (include/pw85.h).
+_DERIVATIVES_ALL, _DERIVATIVES_FORCES = 0, 1
+
+
+def _derivative_flags(forces_only):
+    return _DERIVATIVES_FORCES if forces_only else _DERIVATIVES_ALL
+
+
 @_doc
 def contact_derivatives(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: int = 0,
-                        check: bool = True) -> Any:
-    """Derivatives of μ² for forces, torques and the Hessian (``pw85_contact_derivatives_pairs``).
+                        check: bool = True, forces_only: bool = False) -> Any:
+    """Derivatives of μ² for forces, torques and the Hessian (``pw85_contact_derivatives_pairs_ex``).
 
     Fields of ``pw85_derivatives_t`` (docs/derivatives.md): ``mu2``,
     ``lambda``, ``d_r12`` (3) = ∂μ²/∂r12, ``d_theta1`` (3) and ``d_theta2``
@@ -873,6 +881,10 @@ def contact_derivatives(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: 
 {PAIR_PARAMS}
 {NTH}
 {CHECK}
+    forces_only : bool, optional
+        True: ``PW85_DERIVATIVES_FORCES``, only ``mu2``, ``lambda``,
+        ``d_r12``, ``d_theta1``, ``d_theta2`` (the same bits as the full
+        call's), ``d_q1``, ``d_q2`` and ``hess_r12`` NaN.
 
     Returns
     -------
@@ -897,8 +909,12 @@ def contact_derivatives(r12: ArrayLike, q1: ArrayLike, q2: ArrayLike, nthreads: 
     >>> print(d["mu2"].round(12), d["d_r12"].round(12))
     6.25 [1.5 0.  2. ]
     """
-    return _pair_records("contact_derivatives", lib.pw85_contact_derivatives_pairs,
-                         DERIVATIVES_DTYPE, r12, q1, q2, nthreads, check)
+    flags = _derivative_flags(forces_only)
+
+    def pairs_ex(m, r, a, b, out, st, nt):
+        return lib.pw85_contact_derivatives_pairs_ex(m, r, a, b, flags, out, st, nt)
+    return _pair_records("contact_derivatives", pairs_ex, DERIVATIVES_DTYPE, r12, q1, q2,
+                         nthreads, check)
 
 
 @_doc
@@ -1200,8 +1216,8 @@ def scene_contact(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
 @_doc
 def scene_contact_derivatives(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike,
                               box: Optional[ArrayLike] = None, nthreads: int = 0,
-                              check: bool = True) -> Any:
-    """Derivatives of μ² for index pairs of a scene (``pw85_scene_contact_derivatives``).
+                              check: bool = True, forces_only: bool = False) -> Any:
+    """Derivatives of μ² for index pairs of a scene (``pw85_scene_contact_derivatives_ex``).
 
     Fields as ``pw85.contact_derivatives``, with respect to r12 = c_j − c_i
     (or its periodic image), q_i (``d_q1``, ``d_theta1``) and q_j (``d_q2``,
@@ -1212,6 +1228,8 @@ def scene_contact_derivatives(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike
 {SCENE_PARAMS}
 {NTH}
 {CHECK}
+    forces_only : bool, optional
+        As ``pw85.contact_derivatives``.
 
     Returns
     -------
@@ -1230,8 +1248,12 @@ def scene_contact_derivatives(centres: ArrayLike, q: ArrayLike, pairs: ArrayLike
     >>> print(d["d_r12"][0])
     [0.75 0.   0.  ]
     """
-    return _scene_records("scene_contact_derivatives", lib.pw85_scene_contact_derivatives,
-                          DERIVATIVES_DTYPE, centres, q, pairs, box, nthreads, check)
+    flags = _derivative_flags(forces_only)
+
+    def scene_ex(n, c, qq, pbox, m, p, out, st, nt):
+        return lib.pw85_scene_contact_derivatives_ex(n, c, qq, pbox, m, p, flags, out, st, nt)
+    return _scene_records("scene_contact_derivatives", scene_ex, DERIVATIVES_DTYPE, centres, q,
+                          pairs, box, nthreads, check)
 
 
 # ---- distance of closest approach and 2D functions (a loop of one-pair calls)

@@ -66,6 +66,7 @@ P = ctypes.c_void_p
 D = ctypes.c_double
 I = ctypes.c_int
 LL = ctypes.c_longlong
+U = ctypes.c_uint
 
 
 class Result(ctypes.Structure):
@@ -117,6 +118,7 @@ _sig(lib.pw85_contact_function_method, [P, P, P, I, P])
 _sig(lib.pw85_overlap, [P, P, P])
 _sig(lib.pw85_contact, [P, P, P, P])
 _sig(lib.pw85_contact_derivatives, [P, P, P, P])
+_sig(lib.pw85_contact_derivatives_ex, [P, P, P, U, P])
 _sig(lib.pw85_dca, [P, P, P, I, P])
 _sig(lib.pw85_dca_ex, [P, P, P, D, P, P])
 _sig(lib.pw85_dca_2d, [P, P, P, P])
@@ -125,11 +127,13 @@ _sig(lib.pw85_overlap_pairs, [LL, P, P, P, P, P, I])
 _sig(lib.pw85_contact_function_pairs, [LL, P, P, P, I, P, P, I])
 _sig(lib.pw85_contact_pairs, [LL, P, P, P, P, P, I])
 _sig(lib.pw85_contact_derivatives_pairs, [LL, P, P, P, P, P, I])
+_sig(lib.pw85_contact_derivatives_pairs_ex, [LL, P, P, P, U, P, P, I])
 _sig(lib.pw85_contact_time_pairs, [LL, P, P, P, P, P, P, D, P, P, I])
 _sig(lib.pw85_scene_overlap, [LL, P, P, P, LL, P, P, P, I])
 _sig(lib.pw85_scene_contact_function, [LL, P, P, P, LL, P, I, P, P, I])
 _sig(lib.pw85_scene_contact, [LL, P, P, P, LL, P, P, P, I])
 _sig(lib.pw85_scene_contact_derivatives, [LL, P, P, P, LL, P, P, P, I])
+_sig(lib.pw85_scene_contact_derivatives_ex, [LL, P, P, P, LL, P, U, P, P, I])
 
 
 def _declare_legacy(leg):

@@ -14,6 +14,7 @@ _sig(lib.pw85_configuration_size, [P], LL)
 _sig(lib.pw85_configuration_pairs, [P, D, I, LL, P, P, P, ctypes.POINTER(LL), P])
 _sig(lib.pw85_configuration_test_move, [P, LL, P, P, ctypes.POINTER(LL)])
 _sig(lib.pw85_configuration_move, [P, LL, P, P])
+_sig(lib.pw85_configuration_neighbours, [P, LL, D, LL, P, ctypes.POINTER(LL)])
 
 _destroy = lib.pw85_configuration_destroy
 
@@ -186,26 +187,36 @@ class Scene:
             raise ValueError(f"s: expected a finite number >= 1, got {s}")
         nt = _nthreads(nthreads)
         h = self._h()
-        count = LL(0)
-        cap = 4 * len(self) + 16
-        while True:
+
+        def call(cap, count):
             i = np.empty(cap, np.int64)
             j = np.empty(cap, np.int64)
             mu2 = np.empty(cap, np.float64) if want_mu2 else None
             ret = lib.pw85_configuration_pairs(h, s, nt, cap, i.ctypes.data, j.ctypes.data,
                                                None if mu2 is None else mu2.ctypes.data,
                                                ctypes.byref(count), None)
+            return ret, (i, j, mu2)
+
+        (i, j, mu2), m = self._sized("pairs", 4 * len(self) + 16, call,
+                                     f": the box cannot hold the pairs at s = {s} (s times the two "
+                                     "largest bounding radii exceeds min(Lx, Ly, Lz)/2)")
+        return i[:m].copy(), j[:m].copy(), (mu2[:m].copy() if want_mu2 else None)
+
+    def _sized(self, name, cap, call, box_note):
+        """call(cap, count) -> (status, arrays), repeated with the count the
+        library asks for while the capacity is short; (arrays, count)."""
+        count = LL(0)
+        while True:
+            ret, out = call(cap, count)
             if ret == Status.ERR_CAPACITY:
                 cap = count.value
                 continue
             if ret != Status.OK:
-                msg = f"pw85.Scene.pairs: {status_name(ret)} ({strerror(ret)})"
+                msg = f"pw85.Scene.{name}: {status_name(ret)} ({strerror(ret)})"
                 if ret == Status.ERR_INVALID_ARGUMENT and self.box is not None:
-                    msg += (f": the box cannot hold the pairs at s = {s} (s times the two "
-                            "largest bounding radii exceeds min(Lx, Ly, Lz)/2)")
+                    msg += box_note
                 raise Error(msg, ret, None)
-            m = count.value
-            return i[:m].copy(), j[:m].copy(), (mu2[:m].copy() if want_mu2 else None)
+            return out, count.value
 
     def overlapping_pairs(self, nthreads=0):
         """(i, j): every overlapping pair i < j (exact verdicts), sorted by
@@ -220,13 +231,17 @@ class Scene:
         the others: np.stack([i, j], axis=1)."""
         return self._pairs(s, True, nthreads)
 
-    def _trial(self, func, i, centre, q):
+    def _index(self, i):
         n = len(self)
         if isinstance(i, bool) or not isinstance(i, (int, np.integer)):
             raise TypeError(f"i: expected an integer index, got {type(i).__name__}")
         i = int(i)
         if not 0 <= i < n:
             raise IndexError(f"i = {i} outside [0, {n})")
+        return i
+
+    def _trial(self, func, i, centre, q):
+        i = self._index(i)
         c = np.array(_arr(centre, "centre", 3, ndim=1), dtype=np.float64)
         qq = np.array(_arr(q, "q", 6, ndim=1), dtype=np.float64)
         return i, c, qq
@@ -241,6 +256,27 @@ class Scene:
         if ret != Status.OK:
             _raise("test_move", ret, i, c, qq, self.box)
         return int(j.value)
+
+    def neighbours(self, i, distance):
+        """Every j != i whose centre lies closer than distance to particle
+        i's (the pair's minimum image in a box), ascending, an int64 array;
+        no narrow phase. In a box, distance <= min(Lx, Ly, Lz)/2."""
+        i = self._index(i)
+        if isinstance(distance, bool) or not isinstance(distance, (int, float, np.integer, np.floating)):
+            raise TypeError(f"distance: expected a real number, got {type(distance).__name__}")
+        distance = float(distance)
+        if not (distance >= 0.0 and np.isfinite(distance)):
+            raise ValueError(f"distance: expected a finite number >= 0, got {distance}")
+        h = self._h()
+
+        def call(cap, count):
+            j = np.empty(cap, np.int64)
+            return lib.pw85_configuration_neighbours(h, i, distance, cap, j.ctypes.data,
+                                                     ctypes.byref(count)), j
+
+        j, m = self._sized("neighbours", 64, call,
+                           f": distance {distance} exceeds min(Lx, Ly, Lz)/2 of the box")
+        return j[:m].copy()
 
     def move(self, i, centre, q):
         """Moves particle i to (centre, q) (no overlap test); on error the

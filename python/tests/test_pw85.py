@@ -149,6 +149,46 @@ def test_contact_derivatives():
     assert d2[3].tobytes() == d[3].tobytes()
 
 
+def test_contact_derivatives_forces_only():
+    # forces_only: mu2, lambda, gradient and torques bitwise the full call's
+    # (pw85_contact_derivatives through bare ctypes), the rest NaN
+    r12, q1, q2 = random_pairs(300, seed=17)
+    full = pw85.contact_derivatives(r12, q1, q2)
+    light = pw85.contact_derivatives(r12, q1, q2, nthreads=2, forces_only=True)
+    assert light.dtype == pw85.DERIVATIVES_DTYPE and light.shape == (300,)
+    forces = ("mu2", "lambda", "d_r12", "d_theta1", "d_theta2")
+    for f in forces:
+        assert light[f].tobytes() == full[f].tobytes()
+    for f in ("d_q1", "d_q2", "hess_r12"):
+        assert np.isnan(light[f]).all()
+    one = np.zeros(1, pw85.DERIVATIVES_DTYPE)
+    for k in range(0, 300, 29):
+        rk, ak, bk = (np.ascontiguousarray(x[k]) for x in (r12, q1, q2))
+        assert pw85._clib.pw85_contact_derivatives(rk.ctypes.data, ak.ctypes.data,
+                                                   bk.ctypes.data, one.ctypes.data) == 0
+        assert one.tobytes()[:88] == light[k:k + 1].tobytes()[:88]
+        lk = pw85.contact_derivatives(r12[k], q1[k], q2[k], forces_only=True)
+        assert lk.tobytes() == light[k:k + 1].tobytes()
+    # flags other than 0 and 1 are invalid (the C calls)
+    assert pw85._clib.pw85_contact_derivatives_ex(rk.ctypes.data, ak.ctypes.data, bk.ctypes.data,
+                                                  2, one.ctypes.data) == pw85.Status.ERR_INVALID_ARGUMENT
+    assert np.isnan(one["mu2"][0])
+    # the scene form: pairs (0, 1), (2, 3), ... of 2 m ellipsoids
+    centres = np.zeros((600, 3))
+    centres[1::2] = r12
+    q = np.empty((600, 6))
+    q[0::2], q[1::2] = q1, q2
+    pairs = np.arange(600).reshape(300, 2)
+    sl = pw85.scene_contact_derivatives(centres, q, pairs, forces_only=True)
+    assert sl.tobytes() == light.tobytes()
+    # failing pairs: NaN everywhere, status as the full call's
+    bad = r12.copy()
+    bad[4] = 0.0
+    d2, st = pw85.contact_derivatives(bad, q1, q2, check=False, forces_only=True)
+    assert st[4] == pw85.Status.ERR_INVALID_ARGUMENT and st[3] == 0
+    assert all(np.isnan(d2[4][f]).all() for f in d2.dtype.names)
+
+
 def test_broadcasting():
     r12, q1, q2 = random_pairs(40, seed=3)
     # one q1 against many q2

@@ -87,6 +87,42 @@ def test_test_move_and_move():
     assert np.array_equal(i, bi) and np.array_equal(j, bj)
 
 
+@pytest.mark.parametrize("periodic", [False, True])
+def test_neighbours_brute_force(periodic):
+    centres, q, box, _, _ = config(300, 0.0, 6, periodic, seed=11)
+    scene = pw85.Scene(centres, q, box)
+    if box is not None:
+        h = np.array([[box[0], box[3] * box[1], box[4] * box[2]],
+                      [0, box[1], box[5] * box[2]],
+                      [0, 0, box[2]]])
+        images = np.array([[u, v, w] for u in range(-2, 3) for v in range(-2, 3) for w in range(-2, 3)]) @ h.T
+    lmin = 6 * 1.5 * np.sqrt(3) * 0.9
+    listed = 0
+    for t, i in enumerate(range(0, 300, 7)):
+        distance = [0.1, 0.25, 0.4, 0.499][t % 4] * lmin
+        j = scene.neighbours(i, distance)
+        r = centres - centres[i]
+        if box is not None:  # nearest image: fractional coordinates rounded, then 5^3 images
+            f = np.linalg.solve(h, r.T).T
+            r = r - np.rint(f) @ h.T
+            d = np.min(np.linalg.norm(r[:, None, :] - images[None, :, :], axis=2), axis=1)
+        else:
+            d = np.linalg.norm(r, axis=1)
+        d[i] = np.inf
+        inside = np.flatnonzero(d < distance * (1 - 1e-9))
+        outside = d >= distance * (1 + 1e-9)
+        assert np.all(np.diff(j) > 0) and set(inside) <= set(j) and not np.any(outside[j])
+        listed += len(j)
+    assert listed > 500
+    with pytest.raises(IndexError):
+        scene.neighbours(300, 1.0)
+    with pytest.raises(ValueError, match="distance"):
+        scene.neighbours(0, -1.0)
+    if box is not None:
+        with pytest.raises(pw85.Error, match="exceeds"):
+            scene.neighbours(0, 0.5 * lmin * 1.01)
+
+
 def test_errors():
     centres, q, box, _, _ = config(50, 3.0, 9, True, seed=5)
     c = centres.copy()

@@ -84,6 +84,18 @@ int pw85_configuration_test_move(pw85_configuration const *configuration, long l
   return pw85::scene_test_move(configuration->scene, i, centre, q, *j);
 }
 
+int pw85_configuration_neighbours(pw85_configuration const *configuration, long long i,
+                                  double distance, long long capacity, long long *j,
+                                  long long *count) {
+  if (configuration == nullptr || count == nullptr || capacity < 0 ||
+      (capacity > 0 && j == nullptr))
+    return PW85_ERR_INVALID_ARGUMENT;
+  long long m = 0;
+  int const st = pw85::scene_neighbours(configuration->scene, i, distance, capacity, j, m);
+  if (st == PW85_OK || st == PW85_ERR_CAPACITY) *count = m;
+  return st;
+}
+
 int pw85_configuration_move(pw85_configuration *configuration, long long i,
                             double const centre[3], double const q[6]) {
   if (configuration == nullptr || centre == nullptr || q == nullptr)

@@ -131,10 +131,13 @@ void default_block(long long k0, Pair const &pair, pw85_result *res, int st[]) n
   }
 }
 
-// The same for pw85_contact_derivatives (batch::lane_derivatives, else the
-// one-pair call).
+// The same for pw85_contact_derivatives_ex (batch::lane_derivatives, else
+// the one-pair call).
 template <class Pair>
-void derivatives_block(long long k0, Pair const &pair, pw85_derivatives_t *d, int st[]) noexcept {
+void derivatives_block(long long k0, Pair const &pair, unsigned flags, pw85_derivatives_t *d,
+                       int st[]) noexcept {
+  pw85::DerivativeFields fields = pw85::DerivativeFields::kAll;
+  pw85::capi::derivative_fields(flags, fields);  // checked by the caller
   pw85::batch::DefaultLanes dl;
   pw85::batch::default_lanes_of(k0, pair, dl);
   for (int l = 0; l < pw85::batch::DefaultLanes::w; ++l) {
@@ -143,10 +146,10 @@ void derivatives_block(long long k0, Pair const &pair, pw85_derivatives_t *d, in
     if (!dl.ok[l]) {
       fill_nan(&o.mu2, 29);
       st[l] = PW85_ERR_INVALID_ARGUMENT;
-    } else if (pw85::batch::lane_derivatives(dl, l, out, st[l])) {
+    } else if (pw85::batch::lane_derivatives(dl, l, fields, out, st[l])) {
       std::memcpy(&o, &out, sizeof out);
     } else {
-      st[l] = pw85_contact_derivatives(dl.r[l], dl.q1[l], dl.q2[l], &o);
+      st[l] = pw85_contact_derivatives_ex(dl.r[l], dl.q1[l], dl.q2[l], flags, &o);
     }
   }
 }
@@ -220,20 +223,28 @@ int pw85_contact_pairs(long long m, double const *r12, double const *q1, double 
                                 });
 }
 
+int pw85_contact_derivatives_pairs_ex(long long m, double const *r12, double const *q1,
+                                      double const *q2, unsigned flags, pw85_derivatives_t *d,
+                                      int *status, int nthreads) {
+  if (m == 0) return PW85_OK;
+  pw85::DerivativeFields fields = pw85::DerivativeFields::kAll;
+  if (!valid_count(m, nthreads) || r12 == nullptr || q1 == nullptr || q2 == nullptr ||
+      d == nullptr || !pw85::capi::derivative_fields(flags, fields))
+    return PW85_ERR_INVALID_ARGUMENT;
+  auto one = [&](long long k) noexcept {
+    return pw85_contact_derivatives_ex(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k, flags, d + k);
+  };
+  auto block = [&](long long k0, int st[]) noexcept {
+    derivatives_block(k0, pw85::batch::ArrayPair{r12, q1, q2}, flags, d, st);
+  };
+  return pw85::batch::run_default(m, status, nthreads, block, one);
+}
+
 int pw85_contact_derivatives_pairs(long long m, double const *r12, double const *q1,
                                    double const *q2, pw85_derivatives_t *d, int *status,
                                    int nthreads) {
-  if (m == 0) return PW85_OK;
-  if (!valid_count(m, nthreads) || r12 == nullptr || q1 == nullptr || q2 == nullptr ||
-      d == nullptr)
-    return PW85_ERR_INVALID_ARGUMENT;
-  auto one = [&](long long k) noexcept {
-    return pw85_contact_derivatives(r12 + 3 * k, q1 + 6 * k, q2 + 6 * k, d + k);
-  };
-  auto block = [&](long long k0, int st[]) noexcept {
-    derivatives_block(k0, pw85::batch::ArrayPair{r12, q1, q2}, d, st);
-  };
-  return pw85::batch::run_default(m, status, nthreads, block, one);
+  return pw85_contact_derivatives_pairs_ex(m, r12, q1, q2, PW85_DERIVATIVES_ALL, d, status,
+                                           nthreads);
 }
 
 int pw85_contact_time_pairs(long long m, double const *r12, double const *v12, double const *q1,
@@ -312,24 +323,34 @@ int pw85_scene_contact(long long n, double const *centres, double const *q, doub
       });
 }
 
-int pw85_scene_contact_derivatives(long long n, double const *centres, double const *q,
-                                   double const box[6], long long m, long long const *pairs,
-                                   pw85_derivatives_t *d, int *status, int nthreads) {
+int pw85_scene_contact_derivatives_ex(long long n, double const *centres, double const *q,
+                                      double const box[6], long long m, long long const *pairs,
+                                      unsigned flags, pw85_derivatives_t *d, int *status,
+                                      int nthreads) {
   if (m == 0) return PW85_OK;
   pw85::batch::Box b;
-  if (!scene_args(n, centres, q, box, m, pairs, d, nthreads, b))
+  pw85::DerivativeFields fields = pw85::DerivativeFields::kAll;
+  if (!scene_args(n, centres, q, box, m, pairs, d, nthreads, b) ||
+      !pw85::capi::derivative_fields(flags, fields))
     return PW85_ERR_INVALID_ARGUMENT;
   pw85::batch::Scene const s{n, centres, q, b, pairs, m};
   auto one_r12 = [&](long long k, double const *r12, long long i, long long j) noexcept {
-    if (r12) return pw85_contact_derivatives(r12, q + 6 * i, q + 6 * j, d + k);
+    if (r12) return pw85_contact_derivatives_ex(r12, q + 6 * i, q + 6 * j, flags, d + k);
     fill_nan(&d[k].mu2, 29);
     return int{PW85_ERR_INVALID_ARGUMENT};
   };
   auto one = [&](long long k) noexcept { return pw85::batch::scene_one(s, k, one_r12); };
   auto block = [&](long long k0, int st[]) noexcept {
-    derivatives_block(k0, pw85::batch::ScenePair{s}, d, st);
+    derivatives_block(k0, pw85::batch::ScenePair{s}, flags, d, st);
   };
   return pw85::batch::run_default(m, status, nthreads, block, one);
+}
+
+int pw85_scene_contact_derivatives(long long n, double const *centres, double const *q,
+                                   double const box[6], long long m, long long const *pairs,
+                                   pw85_derivatives_t *d, int *status, int nthreads) {
+  return pw85_scene_contact_derivatives_ex(n, centres, q, box, m, pairs, PW85_DERIVATIVES_ALL, d,
+                                           status, nthreads);
 }
 
 // The older index-pair calls: the scene calls without a box (one line each),

@@ -7,6 +7,8 @@
 #include "common/spd.hpp"
 #include "common/status.hpp"
 #include "common/sym3.hpp"
+#include "derivatives/derivatives.hpp"
+#include "pw85.h"
 
 namespace pw85 {
 namespace capi {
@@ -23,6 +25,14 @@ inline Status validate_pair(double const *r12, double const *q1, double const *q
     return kInvalidArgument;
   if (!positive_definite(q1) || !positive_definite(q2)) return kNotSpd;
   return kOk;
+}
+
+// The fields of a flags argument of the derivatives calls; false for
+// flags other than PW85_DERIVATIVES_ALL and PW85_DERIVATIVES_FORCES.
+inline bool derivative_fields(unsigned flags, DerivativeFields &fields) noexcept {
+  if (flags != PW85_DERIVATIVES_ALL && flags != PW85_DERIVATIVES_FORCES) return false;
+  fields = flags == PW85_DERIVATIVES_ALL ? DerivativeFields::kAll : DerivativeFields::kForces;
+  return true;
 }
 
 }  // namespace capi

@@ -48,6 +48,10 @@ module pw85
   integer(c_int), parameter :: PW85_DCA_MAX_EVAL = 100
   ! First contact time: PW85_CONTACT_TIME_MAX_EVAL.
   integer(c_int), parameter :: PW85_CONTACT_TIME_MAX_EVAL = 100000
+  ! Flags of the _ex derivatives calls (unsigned in C): every field, or mu2,
+  ! lambda, d_r12, d_theta1, d_theta2 only (the others NaN).
+  integer(c_int), parameter :: PW85_DERIVATIVES_ALL = 0
+  integer(c_int), parameter :: PW85_DERIVATIVES_FORCES = 1
 
   ! Contact geometry : mirror of struct pw85_contact_t of pw85.h
   ! (docs/contact_geometry.md). Fortran index k of x0 and n is C index k - 1.
@@ -247,6 +251,17 @@ module pw85
       integer(c_int) :: status
     end function pw85_contact_derivatives
 
+    ! int pw85_contact_derivatives_ex(double const r12[3], double const q1[6],
+    !     double const q2[6], unsigned flags, pw85_derivatives_t *d)
+    function pw85_contact_derivatives_ex(r12, q1, q2, flags, d) &
+        bind(C, name="pw85_contact_derivatives_ex") result(status)
+      import :: c_double, c_int, pw85_derivatives_t
+      real(c_double), intent(in) :: r12(3), q1(6), q2(6)
+      integer(c_int), value :: flags
+      type(pw85_derivatives_t), intent(out) :: d
+      integer(c_int) :: status
+    end function pw85_contact_derivatives_ex
+
     ! Batch calls: centres(3, n), q(6, n), pairs(2, m) holding 0-based (C)
     ! indices; status(m) may be omitted (NULL).
     ! int pw85_overlap_batch(long long n, double const *centres,
@@ -351,6 +366,21 @@ module pw85
       integer(c_int) :: res
     end function pw85_contact_derivatives_pairs
 
+    ! int pw85_contact_derivatives_pairs_ex(long long m, double const *r12,
+    !     double const *q1, double const *q2, unsigned flags,
+    !     pw85_derivatives_t *d, int *status, int nthreads)
+    function pw85_contact_derivatives_pairs_ex(m, r12, q1, q2, flags, d, status, nthreads) &
+        bind(C, name="pw85_contact_derivatives_pairs_ex") result(res)
+      import :: c_double, c_int, c_long_long, pw85_derivatives_t
+      integer(c_long_long), value :: m
+      real(c_double), intent(in) :: r12(3, *), q1(6, *), q2(6, *)
+      integer(c_int), value :: flags
+      type(pw85_derivatives_t), intent(out) :: d(*)
+      integer(c_int), intent(out), optional :: status(*)
+      integer(c_int), value :: nthreads
+      integer(c_int) :: res
+    end function pw85_contact_derivatives_pairs_ex
+
     ! Scenes: centres(3, n), q(6, n), pairs(2, m) holding 0-based (C)
     ! indices; box(6) = [Lx, Ly, Lz, xy, xz, yz] (HOOMD/GSD convention) or
     ! omitted (NULL: no periodicity); status(m) may be omitted.
@@ -421,6 +451,24 @@ module pw85
       integer(c_int), value :: nthreads
       integer(c_int) :: res
     end function pw85_scene_contact_derivatives
+
+    ! int pw85_scene_contact_derivatives_ex(long long n, double const *centres,
+    !     double const *q, double const box[6], long long m,
+    !     long long const *pairs, unsigned flags, pw85_derivatives_t *d,
+    !     int *status, int nthreads)
+    function pw85_scene_contact_derivatives_ex(n, centres, q, box, m, pairs, flags, d, &
+        status, nthreads) bind(C, name="pw85_scene_contact_derivatives_ex") result(res)
+      import :: c_double, c_int, c_long_long, pw85_derivatives_t
+      integer(c_long_long), value :: n, m
+      real(c_double), intent(in) :: centres(3, *), q(6, *)
+      real(c_double), intent(in), optional :: box(6)
+      integer(c_long_long), intent(in) :: pairs(2, *)
+      integer(c_int), value :: flags
+      type(pw85_derivatives_t), intent(out) :: d(*)
+      integer(c_int), intent(out), optional :: status(*)
+      integer(c_int), value :: nthreads
+      integer(c_int) :: res
+    end function pw85_scene_contact_derivatives_ex
 
     ! ---- Configurations: N ellipsoids in a box (docs/scene.md) ----
     ! The handle is a type(c_ptr); indices (i, j, bad) are 0-based, as in C.
@@ -495,6 +543,21 @@ module pw85
       integer(c_long_long), intent(inout) :: j
       integer(c_int) :: status
     end function pw85_configuration_test_move
+
+    ! int pw85_configuration_neighbours(pw85_configuration const *configuration,
+    !     long long i, double distance, long long capacity, long long *j,
+    !     long long *count)
+    function pw85_configuration_neighbours(configuration, i, distance, capacity, j, count) &
+        bind(C, name="pw85_configuration_neighbours") result(status)
+      import :: c_double, c_int, c_long_long, c_ptr
+      type(c_ptr), value :: configuration
+      integer(c_long_long), value :: i
+      real(c_double), value :: distance
+      integer(c_long_long), value :: capacity
+      integer(c_long_long), intent(out), optional :: j(*)
+      integer(c_long_long), intent(out) :: count
+      integer(c_int) :: status
+    end function pw85_configuration_neighbours
 
     ! int pw85_configuration_move(pw85_configuration *configuration,
     !     long long i, double const centre[3], double const q[6])

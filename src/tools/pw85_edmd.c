@@ -10,11 +10,14 @@
  * I = 2 (a^2 + b^2 + c^2) / 15 (M1), in a periodic cubic box at packing
  * fraction PHI, start on a lattice with aligned axes, kT = 1.
  * Free flight: c(t) = c + t v, A(t) = exp(t [w]x) A (exact torque-free
- * motion of a spherical top). Cell lists of side >= 2 R (R: largest
- * semi-axis); per particle the earliest event (collision with a partner in
- * the 27 neighbouring cells by pw85_contact_time, or crossing of a cell
- * face) in an indexed binary heap; collision counters invalidate stale
- * events. Collisions: smooth hard bodies, impulse along the normal of
+ * motion of a spherical top). Candidate partners: neighbour lists of
+ * range 2 R + skin (R: largest semi-axis, skin R / 2) from the
+ * configuration object (pw85_configuration_neighbours on the centres at
+ * each particle's last list rebuild), kept symmetric; a particle rebuilds
+ * its list when its centre has moved skin / 2 (a shell-exit event). Per
+ * particle the earliest event (collision with a partner of its list by
+ * pw85_contact_time, or shell exit) in an indexed binary heap; collision
+ * counters invalidate stale events. Collisions: smooth hard bodies, impulse along the normal of
  * pw85_contact at its contact point (M2-M4). E collisions of equilibration,
  * then C collisions measured: pressure from the collision virial (M5) in B
  * blocks (mean, standard error).
@@ -22,8 +25,9 @@
  * and 1 - 1e-10 <= mu^2 <= 1 + 1e-9 for the pair, the
  * contact points separate after the impulse, the pair's energy, momentum
  * and angular momentum about the origin are conserved to 1e-10 relative;
- * every K events (default 1) no pair of the scene overlaps (pw85_overlap
- * on every pair whose bounding spheres intersect); at the end total kinetic
+ * every K events (default 1) no pair of the scene overlaps
+ * (pw85_configuration_pairs at s = 1 on a configuration of the current
+ * state); at the end total kinetic
  * energy and momentum conserved to 1e-10 relative. --cs: also
  * |Z / Z_CS - 1| <= 1 % (Carnahan-Starling, M6; spheres). --miss M (fault
  * injection, for the test that the checks fail): every M-th
@@ -45,25 +49,30 @@
 #include "demo_rng.h"
 #include "gsd_write.h"
 
-enum { EV_NONE, EV_COLLISION, EV_CROSS, EV_REPREDICT };
+enum { EV_NONE, EV_COLLISION, EV_SHELL, EV_REPREDICT };
 
 typedef struct {
   double t;        /* event time */
   int type, j;     /* partner j of a collision */
   long long cj;    /* partner's collision counter at prediction */
-  int dim, dir;    /* cell crossing: dimension and direction +-1 */
 } event_t;
 
 typedef struct {
-  int n, nc;
-  double L, h, R, axes2[3], inertia, tnow, tprev; /* tprev: time of the previous event */
+  int *j, n, cap; /* a neighbour list */
+} list_t;
+
+typedef struct {
+  int n;
+  double L, R, skin, axes2[3], inertia, tnow, tprev; /* tprev: time of the previous event */
   double *t0, *c, *v, *w, *a; /* state at t0: centre, velocity, ang. velocity, A (row major) */
-  int *cell;                  /* 3 cell indices per particle */
+  double *ref;                /* centres at the last list rebuild (3 per particle) */
   long long *count;           /* collisions of each particle */
   event_t *ev;
   int *heap, *pos;            /* indexed binary min-heap of particles by ev.t */
-  int *head, *next;           /* cell lists */
-  long long calls, skipped_far, events, collisions, crossings, repredicts, grazes, backoffs, stuck, miss;
+  pw85_configuration *conf;   /* the centres ref: neighbour queries */
+  list_t *nb;                 /* neighbour lists, symmetric */
+  long long *found;           /* n: a query's result */
+  long long calls, skipped_far, events, collisions, rebuilds, repredicts, grazes, backoffs, stuck, miss;
 } sim_t;
 
 /* ---- kinematics ---------------------------------------------------------- */
@@ -152,29 +161,55 @@ static void heap_fix(sim_t *s, int i) {
   }
 }
 
-/* Neighbour cell of particle i at offset (dx, dy, dz): cell number and the
- * image shift of its particles (-1, 0, 1 box lengths per axis). */
-static int neighbour_cell(const sim_t *s, int i, const int off[3], int shift[3]) {
-  int k = 0;
-  for (int d = 0; d < 3; d++) {
-    int c = s->cell[3 * i + d] + off[d];
-    shift[d] = c < 0 ? -1 : c >= s->nc ? 1 : 0;
-    k = k * s->nc + (c - shift[d] * s->nc);
+/* ---- neighbour lists ------------------------------------------------------ */
+
+static int list_add(list_t *l, int j) {
+  if (l->n == l->cap) {
+    int cap = l->cap ? 2 * l->cap : 16;
+    int *p = realloc(l->j, (size_t)cap * sizeof(int));
+    if (!p) return PW85_ERR_NO_MEMORY;
+    l->j = p, l->cap = cap;
   }
-  return k;
+  l->j[l->n++] = j;
+  return PW85_OK;
 }
 
-static void cell_insert(sim_t *s, int i) {
-  int k = (s->cell[3 * i] * s->nc + s->cell[3 * i + 1]) * s->nc + s->cell[3 * i + 2];
-  s->next[i] = s->head[k];
-  s->head[k] = i;
+static void list_remove(list_t *l, int j) {
+  for (int k = 0; k < l->n; k++)
+    if (l->j[k] == j) {
+      l->j[k] = l->j[--l->n];
+      return;
+    }
 }
 
-static void cell_erase(sim_t *s, int i) {
-  int k = (s->cell[3 * i] * s->nc + s->cell[3 * i + 1]) * s->nc + s->cell[3 * i + 2];
-  int *p = &s->head[k];
-  while (*p != i) p = &s->next[*p];
-  *p = s->next[i];
+/* Particle i's list from the configuration (centres ref): every j whose
+ * reference centre lies within 2 R + skin of i's, added to j's list too.
+ * Pairs off the lists are >= 2 R + skin apart at their references; each
+ * centre stays within skin / 2 of its reference, so they cannot touch. */
+static int rebuild_list(sim_t *s, int i) {
+  long long m = 0;
+  int st = pw85_configuration_neighbours(s->conf, i, 2.0 * s->R + s->skin, s->n, s->found, &m);
+  if (st != PW85_OK) return st;
+  for (int k = 0; k < s->nb[i].n; k++) list_remove(&s->nb[s->nb[i].j[k]], i);
+  s->nb[i].n = 0;
+  for (long long k = 0; k < m && st == PW85_OK; k++) {
+    int j = (int)s->found[k];
+    st = list_add(&s->nb[i], j);
+    if (st == PW85_OK) st = list_add(&s->nb[j], i);
+  }
+  return st;
+}
+
+/* Time after s->tnow at which particle i's centre is skin / 2 from its
+ * reference: the larger root of |d + t v| = skin / 2, d = c(tnow) - ref. */
+static double shell_exit(const sim_t *s, int i, const double c[3]) {
+  double d[3], vv = 0, dv = 0, dd = 0, h = 0.5 * s->skin;
+  for (int k = 0; k < 3; k++) d[k] = c[k] - s->ref[3 * i + k];
+  for (int k = 0; k < 3; k++) vv += s->v[3 * i + k] * s->v[3 * i + k], dv += d[k] * s->v[3 * i + k], dd += d[k] * d[k];
+  if (!(vv > 0.0)) return INFINITY;
+  double disc = dv * dv - vv * (dd - h * h);
+  double t = (-dv + sqrt(disc > 0.0 ? disc : 0.0)) / vv;
+  return t > 0.0 ? t : 0.0;
 }
 
 /* Relative state of the pair (i, j) at time t with the image shift of j:
@@ -185,7 +220,7 @@ static void pair_at(const sim_t *s, int i, int j, const int shift[3], double t, 
   state_at(s, i, t, ci, NULL, qi);
   state_at(s, j, t, cj, NULL, qj);
   for (int d = 0; d < 3; d++) {
-    r12[d] = (cj[d] - ci[d]) + s->L * shift[d]; /* as check_scene, bit for bit */
+    r12[d] = (cj[d] - ci[d]) + s->L * shift[d];
     v12[d] = s->v[3 * j + d] - s->v[3 * i + d];
   }
 }
@@ -266,28 +301,24 @@ static int pair_time(sim_t *s, int i, int j, const int shift[3], double horizon,
   }
 }
 
-/* Earliest event of particle i from s->tnow: face crossing, collision with a
- * particle of the 27 neighbouring cells, or a re-prediction where a
- * pw85_contact_time ran out of evaluations. Returns a library status. */
+/* Earliest event of particle i from s->tnow: shell exit, collision with a
+ * particle of its list (the nearest image now: with L >= 6 R and skin R / 2
+ * no other image comes within 2 R while both centres stay within skin / 2 of
+ * their references), or a re-prediction where a pw85_contact_time ran out
+ * of evaluations. Returns a library status. */
 static int predict(sim_t *s, int i) {
-  event_t e = {INFINITY, EV_NONE, -1, 0, 0, 0};
+  event_t e = {INFINITY, EV_NONE, -1, 0};
   double c[3];
   state_at(s, i, s->tnow, c, NULL, NULL);
-  for (int d = 0; d < 3; d++) {
-    double v = s->v[3 * i + d], t = INFINITY;
-    if (v > 0.0) t = ((s->cell[3 * i + d] + 1) * s->h - c[d]) / v;
-    if (v < 0.0) t = (s->cell[3 * i + d] * s->h - c[d]) / v;
-    t = fmax(t, 0.0);
-    if (t < e.t - s->tnow) {
-      e.t = s->tnow + t, e.type = EV_CROSS, e.dim = d, e.dir = v > 0.0 ? 1 : -1;
-    }
-  }
-  for (int off = 0; off < 27; off++) {
-    int o[3] = {off / 9 - 1, (off / 3) % 3 - 1, off % 3 - 1}, shift[3];
-    int k = neighbour_cell(s, i, o, shift);
-    for (int j = s->head[k]; j >= 0; j = s->next[j]) {
-      double horizon = e.t - s->tnow, tc;
-      if (j == i || !(horizon > 0.0)) continue;
+  double t_exit = shell_exit(s, i, c);
+  if (t_exit < INFINITY) e.t = s->tnow + t_exit, e.type = EV_SHELL;
+  for (int k = 0; k < s->nb[i].n; k++) {
+    int j = s->nb[i].j[k], shift[3];
+    double cj[3], horizon = e.t - s->tnow, tc;
+    if (!(horizon > 0.0)) break;
+    state_at(s, j, s->tnow, cj, NULL, NULL);
+    for (int d = 0; d < 3; d++) shift[d] = -(int)nearbyint((cj[d] - c[d]) / s->L);
+    {
       int st = pair_time(s, i, j, shift, horizon, &tc);
       if (st != PW85_OK && st != PW85_ERR_NO_CONVERGENCE) {
         fprintf(stderr, "pw85_edmd: collision prediction: %s\n", pw85_strerror(st));
@@ -401,28 +432,19 @@ static int collide(sim_t *s, int i, const event_t *ev, checks_t *ck, double *vir
   return PW85_OK;
 }
 
-/* Overlap check of every pair of the scene at s->tnow: pw85_overlap on each
- * pair of neighbouring cells whose bounding spheres (radius R) intersect. */
-static int check_scene(sim_t *s, checks_t *ck, double *cbuf, double *qbuf) {
+/* Overlap check of every pair of the scene at s->tnow: the overlapping
+ * pairs of a configuration of the current state (check, updated in place:
+ * pw85_configuration_pairs at s = 1, the count only). */
+static int check_scene(sim_t *s, pw85_configuration *check, checks_t *ck, double *cbuf, double *qbuf) {
   for (int i = 0; i < s->n; i++) state_at(s, i, s->tnow, cbuf + 3 * i, NULL, qbuf + 6 * i);
-  long long bad = 0;
-  for (int i = 0; i < s->n; i++)
-    for (int off = 0; off < 27; off++) {
-      int o[3] = {off / 9 - 1, (off / 3) % 3 - 1, off % 3 - 1}, shift[3];
-      int k = neighbour_cell(s, i, o, shift);
-      for (int j = s->head[k]; j >= 0; j = s->next[j]) {
-        if (j <= i) continue;
-        double r[3];
-        for (int d = 0; d < 3; d++) r[d] = (cbuf[3 * j + d] - cbuf[3 * i + d]) + s->L * shift[d];
-        if (dot3(r, r) >= 4.0 * s->R * s->R) continue;
-        int ov = pw85_overlap(r, qbuf + 6 * i, qbuf + 6 * j);
-        if (ov < 0) return ov;
-        bad += ov;
-        ck->pairs_checked++;
-      }
-    }
+  double box[6] = {s->L, s->L, s->L, 0, 0, 0};
+  long long count = 0, examined[2] = {0, 0};
+  int st = pw85_configuration_update(check, s->n, cbuf, qbuf, box, NULL);
+  if (st == PW85_OK) st = pw85_configuration_pairs(check, 1.0, 1, 0, NULL, NULL, NULL, &count, examined);
+  if (st != PW85_OK && st != PW85_ERR_CAPACITY) return st;
+  ck->pairs_checked += examined[0];
   ck->scene_checks++;
-  ck->scene_overlaps += bad;
+  ck->scene_overlaps += count;
   return PW85_OK;
 }
 
@@ -440,8 +462,12 @@ static void totals(const sim_t *s, double *ktrans, double *krot, double p[3], do
 /* ---- set-up and main loop --------------------------------------------------- */
 
 static void free_sim(sim_t *s) {
-  free(s->t0), free(s->c), free(s->v), free(s->w), free(s->a), free(s->cell), free(s->count);
-  free(s->ev), free(s->heap), free(s->pos), free(s->head), free(s->next);
+  free(s->t0), free(s->c), free(s->v), free(s->w), free(s->a), free(s->ref), free(s->count);
+  free(s->ev), free(s->heap), free(s->pos), free(s->found);
+  if (s->nb)
+    for (int i = 0; i < s->n; i++) free(s->nb[i].j);
+  free(s->nb);
+  pw85_configuration_destroy(s->conf);
 }
 
 static const char *const gsd_logged[] = {"log/pw85/time"};
@@ -582,12 +608,13 @@ int main(int argc, char **argv) {
   for (int d = 0; d < 3; d++) s.axes2[d] = axes[d] * axes[d];
   s.inertia = 2.0 * (s.axes2[0] + s.axes2[1] + s.axes2[2]) / 15.0; /* (M1) */
   s.L = cbrt(n * 4.0 / 3.0 * 3.141592653589793 * axes[0] * axes[1] * axes[2] / phi);
-  s.nc = (int)floor(s.L / (2.0 * s.R * (1.0 + 1e-9)));
-  if (s.nc < 3) {
-    fprintf(stderr, "pw85_edmd: box %g smaller than 3 cells of side 2R = %g; increase --n\n", s.L, 2 * s.R);
+  s.skin = 0.5 * s.R;
+  /* L > 4 R + 2 skin: one image of a pair within 2 R + skin at a time
+   * (predict). */
+  if (!(s.L >= 6.0 * s.R * (1.0 + 1e-9))) {
+    fprintf(stderr, "pw85_edmd: box %g smaller than 6R = %g; increase --n\n", s.L, 6 * s.R);
     return 2;
   }
-  s.h = s.L / s.nc;
   /* Lattice of aligned particles, nl[d] = floor(L / (2 axes[d])) sites of
    * spacing >= 2 axes[d] along axis d; particle i on site i * sites / n. */
   int nl[3];
@@ -597,25 +624,26 @@ int main(int argc, char **argv) {
     fprintf(stderr, "pw85_edmd: packing fraction too high for the initial lattice\n");
     return 2;
   }
-  size_t nn = (size_t)n, ncell = (size_t)s.nc * (size_t)s.nc * (size_t)s.nc;
+  size_t nn = (size_t)n;
   s.t0 = calloc(nn, sizeof(double));
   s.c = calloc(3 * nn, sizeof(double));
   s.v = calloc(3 * nn, sizeof(double));
   s.w = calloc(3 * nn, sizeof(double));
   s.a = calloc(9 * nn, sizeof(double));
-  s.cell = calloc(3 * nn, sizeof(int));
+  s.ref = calloc(3 * nn, sizeof(double));
   s.count = calloc(nn, sizeof(long long));
   s.ev = calloc(nn, sizeof(event_t));
   s.heap = calloc(nn, sizeof(int));
   s.pos = calloc(nn, sizeof(int));
-  s.head = malloc(ncell * sizeof(int));
-  s.next = calloc(nn, sizeof(int));
+  s.nb = calloc(nn, sizeof(list_t));
+  s.found = calloc(nn, sizeof(long long));
   double *cbuf = calloc(3 * nn, sizeof(double)), *qbuf = calloc(6 * nn, sizeof(double));
   double *zblock = calloc((size_t)blocks, sizeof(double));
-  if (!s.t0 || !s.c || !s.v || !s.w || !s.a || !s.cell || !s.count || !s.ev || !s.heap || !s.pos ||
-      !s.head || !s.next || !cbuf || !qbuf || !zblock)
+  if (!s.t0 || !s.c || !s.v || !s.w || !s.a || !s.ref || !s.count || !s.ev || !s.heap || !s.pos ||
+      !s.nb || !s.found || !cbuf || !qbuf || !zblock) {
+    fprintf(stderr, "pw85_edmd: out of memory\n");
     return 2;
-  for (size_t k = 0; k < ncell; k++) s.head[k] = -1;
+  }
   rng_t g = {seed};
   double vm[3] = {0, 0, 0};
   for (int i = 0; i < n; i++) {
@@ -627,23 +655,30 @@ int main(int argc, char **argv) {
       s.v[3 * i + d] = rng_normal(&g);
       s.w[3 * i + d] = rng_normal(&g) / sqrt(s.inertia);
       vm[d] += s.v[3 * i + d] / n;
-      int c = (int)(s.c[3 * i + d] / s.h);
-      s.cell[3 * i + d] = c < 0 ? 0 : c >= s.nc ? s.nc - 1 : c;
     }
-    cell_insert(&s, i);
   }
   for (int i = 0; i < n; i++)
     for (int d = 0; d < 3; d++) s.v[3 * i + d] -= vm[d];
+  memcpy(s.ref, s.c, 3 * nn * sizeof(double));
+  for (int i = 0; i < n; i++) state_at(&s, i, 0.0, NULL, NULL, qbuf + 6 * i);
+  double const box[6] = {s.L, s.L, s.L, 0, 0, 0};
+  pw85_configuration *checker = NULL;
+  int st = pw85_configuration_create(n, s.ref, qbuf, box, &s.conf, NULL);
+  if (st == PW85_OK) st = pw85_configuration_create(n, s.ref, qbuf, box, &checker, NULL);
+  for (int i = 0; i < n && st == PW85_OK; i++) st = rebuild_list(&s, i);
   checks_t ck = {0};
   ck.mu2_min = INFINITY;
-  int st = check_scene(&s, &ck, cbuf, qbuf);
+  if (st == PW85_OK) st = check_scene(&s, checker, &ck, cbuf, qbuf);
   if (st != PW85_OK || ck.scene_overlaps) {
-    fprintf(stderr, "pw85_edmd: initial lattice overlaps or library error\n");
+    fprintf(stderr, "pw85_edmd: initial lattice overlaps or library error (%s)\n", pw85_strerror(st));
     return 2;
   }
+  long long listed = 0;
+  for (int i = 0; i < n; i++) listed += s.nb[i].n;
   printf("pw85_edmd: %d ellipsoids (%s, semi-axes %g %g %g, I = %.6g), packing fraction %g, box %.6g, "
-         "%d^3 cells, seed %llu\n",
-         n, shape, axes[0], axes[1], axes[2], s.inertia, phi, s.L, s.nc, (unsigned long long)seed);
+         "neighbour lists of range 2R + %g (%.1f per particle at the start), seed %llu\n",
+         n, shape, axes[0], axes[1], axes[2], s.inertia, phi, s.L, s.skin, (double)listed / n,
+         (unsigned long long)seed);
   gsd_writer traj;
   double *gsd_quat = NULL;
   float *gsd_buf = NULL;
@@ -656,6 +691,7 @@ int main(int argc, char **argv) {
     if (!gsd_quat || !gsd_buf || gsd_open(&traj, gsd_path, app, gsd_logged, 1) != 0) {
       fprintf(stderr, "pw85_edmd: cannot write '%s': %s\n", gsd_path, strerror(errno));
       free_sim(&s);
+      pw85_configuration_destroy(checker);
       free(cbuf), free(qbuf), free(zblock), free(gsd_quat), free(gsd_buf);
       return 2;
     }
@@ -681,18 +717,19 @@ int main(int argc, char **argv) {
     s.tnow = e.t;
     s.events++;
     long long before_c = s.collisions;
-    if (e.type == EV_CROSS) {
+    if (e.type == EV_SHELL) { /* new reference (in the box), new list */
+      double q[6];
       advance(&s, i, s.tnow);
-      cell_erase(&s, i);
-      int c = s.cell[3 * i + e.dim] + e.dir;
-      if (c < 0 || c >= s.nc) {
-        c = (c + s.nc) % s.nc;
-        s.c[3 * i + e.dim] -= e.dir * s.L;
+      for (int d = 0; d < 3; d++) {
+        if (s.c[3 * i + d] < 0.0) s.c[3 * i + d] += s.L;
+        if (s.c[3 * i + d] >= s.L) s.c[3 * i + d] -= s.L;
       }
-      s.cell[3 * i + e.dim] = c;
-      cell_insert(&s, i);
-      s.crossings++;
-      st = predict(&s, i);
+      memcpy(s.ref + 3 * i, s.c + 3 * i, 3 * sizeof(double));
+      state_at(&s, i, s.tnow, NULL, NULL, q);
+      st = pw85_configuration_move(s.conf, i, s.ref + 3 * i, q);
+      if (st == PW85_OK) st = rebuild_list(&s, i);
+      s.rebuilds++;
+      if (st == PW85_OK) st = predict(&s, i);
     } else if (e.type == EV_COLLISION && s.count[e.j] == e.cj) {
       st = collide(&s, i, &e, &ck, &virial);
       if (s.collisions == nequil && s.collisions != before_c) tblock = s.tnow, virial = 0.0;
@@ -702,7 +739,7 @@ int main(int argc, char **argv) {
       s.repredicts += e.type == EV_REPREDICT;
       st = predict(&s, i);
     }
-    if (st == PW85_OK && s.events % check_every == 0) st = check_scene(&s, &ck, cbuf, qbuf);
+    if (st == PW85_OK && s.events % check_every == 0) st = check_scene(&s, checker, &ck, cbuf, qbuf);
     if (st != PW85_OK || s.collisions == before_c || s.collisions <= nequil) continue;
     if ((s.collisions - nequil) % per_block == 0) {
       double kt, kr, p[3], pm;
@@ -728,9 +765,9 @@ int main(int argc, char **argv) {
   double de = fabs(kt1 + kr1 - kt0 - kr0) / (kt0 + kr0);
   double dp = sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) +
                    (p1[2] - p0[2]) * (p1[2] - p0[2])) / pm0;
-  printf("events %lld: collisions %lld (grazing, no impulse: %lld), cell crossings %lld, "
+  printf("events %lld: collisions %lld (grazing, no impulse: %lld), list rebuilds %lld, "
          "re-predictions %lld, time %.6g\n",
-         s.events, s.collisions, s.grazes, s.crossings, s.repredicts, s.tnow);
+         s.events, s.collisions, s.grazes, s.rebuilds, s.repredicts, s.tnow);
   printf("pw85_contact_time calls %lld (%.1f per collision), pairs skipped by bounding spheres %lld\n",
          s.calls, (double)s.calls / (double)(s.collisions ? s.collisions : 1), s.skipped_far);
   printf("at contact: mu^2 - 1 in [%.3e, %.3e], mu^2 < 1 - 1e-10: %lld, mu^2 > 1 + 1e-9: %lld, "
@@ -760,6 +797,7 @@ int main(int argc, char **argv) {
              (cs && !(spheres && fabs(zm / zcs - 1.0) <= 0.01));
   printf("%s\n", fail ? "FAILED" : "OK");
   free_sim(&s);
+  pw85_configuration_destroy(checker);
   free(cbuf), free(qbuf), free(zblock);
   return check && fail ? 1 : 0;
 }

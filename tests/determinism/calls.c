@@ -292,6 +292,28 @@ void call_all(test_input const *in, test_sink *s) {
     s->put(s, "pw85_contact", st, v, 11);
   }
 
+  {
+    pw85_derivatives_t d;
+    st = pw85_contact_derivatives(r, q1, q2, &d);
+    s->put(s, "pw85_contact_derivatives", st, &d.mu2,
+           (int)(sizeof d / sizeof(double)));
+  }
+  if (in->kind != 2 && in->kind != 3) {
+    /* Approaching at unit speed along -r12 for a unit time, ellipsoid 1
+     * rotating about one of the random axes: a crossing within the horizon
+     * for most pairs apart by less than twice their size. Not for the
+     * aspect ratios up to 1e16 and the nearly singular matrices, where a
+     * rotating needle can spend the whole budget of 1e5 evaluations (0.1 s
+     * each call; the contact-time tests cover those). */
+    double const v12[3] = {-r[0], -r[1], -r[2]}, w2[3] = {0.0, 0.0, 0.0};
+    double const w1[3] = {0.5 * in->axes[0], 0.5 * in->axes[1], 0.5 * in->axes[2]};
+    double t;
+    int evaluations = 0;
+    st = pw85_contact_time_ex(r, v12, q1, w1, q2, w2, 1.0, &t, &evaluations);
+    double const v[2] = {t, (double)evaluations};
+    s->put(s, "pw85_contact_time_ex", st, v, 2);
+  }
+
   /* libpw85_legacy */
   out[0] = pw85_legacy__det_sym(q1);
   s->put(s, "pw85_legacy__det_sym", 0, out, 1);

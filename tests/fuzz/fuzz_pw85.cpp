@@ -2,43 +2,57 @@
 // each input is decoded into a pair of ellipsoids (and the scalars the other
 // functions take), every function is called, and the promises of
 // include/pw85.h and include/pw85_legacy.h are checked; a violated promise
-// prints its name and calls __builtin_trap(). Built by meson with
-// -Dfuzz=true (Clang only, tests/fuzz/meson.build); .ci/fuzz runs it.
+// prints its name and calls __builtin_trap(). This file: the one-pair calls,
+// the *_batch calls and the entry points; fuzz_scene.cpp: the pairs, scene,
+// configuration, derivative and contact-time calls. Built by meson with
+// -Dfuzz=true (Clang only, tests/fuzz/meson.build), run by .ci/fuzz; the
+// same checks run as fuzz-replay (fuzz_replay.cpp) over the corpus in every
+// build of the suite, on every instruction-set variant.
 //
 // Input layout (shorter inputs are padded with zeros):
 //   byte 0      mode: bit 0 (bit 1): q1 (q2) built from its six doubles as
 //               R diag(s) R^T, s the first three, R from three angles,
-//               instead of taken raw; bit 2: r12 = 0; bit 3: r12 negated
+//               instead of taken raw; bit 2: r12 = 0; bit 3: r12 negated;
+//               bit 4: the scene calls with the periodic box below (else
+//               without); bit 5: the box keeps its tilts (else they are 0);
+//               bit 6: r12 = (r12[0], 0, 0); bit 7: the contact-time calls
 //   byte 1      method (signed) for pw85_contact_function_method, pw85_dca
+//               and the pairs and scene calls that take one
 //   17 doubles  r12[3], q1[6], q2[6], lambda, theta_tol
+//   17 doubles  box[6], v12[3], w1[3], w2[3], t_max, s (the scale of
+//               pw85_configuration_pairs)
 //
 // Checks (names for PW85_FUZZ_SKIP, a comma-separated list of checks not to
-// make, e.g. PW85_FUZZ_SKIP=lambda,finite):
-//   status       the status is one the function documents
-//   finite       the estimates documented as written are finite
-//   nan          outputs are NaN on the errors documented so
-//   lambda       lambda in [0, 1] whenever a result is written
-//   swap         pw85_overlap's verdict unchanged when the ellipsoids swap
-//   batch        the batch calls equal the one-pair calls, bit for bit
-//   determinism  the same call twice gives the same bits
+// make, e.g. PW85_FUZZ_SKIP=lambda,finite): the names of fuzz::check_name
+// (fuzz_checks.hpp says what each checks).
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <initializer_list>
 
+#include "fuzz_checks.hpp"
 #include "pw85.h"
 #include "pw85_legacy.h"
 
+namespace fuzz {
+
+char const *const check_name[kChecks] = {"status",      "finite", "nan",   "lambda",
+                                         "swap",        "batch",  "determinism",
+                                         "untouched",   "spd",    "image", "time",
+                                         "axes",        "answers"};
+bool skip_check[kChecks];
+int current_method = -1;
+std::FILE *trace;
+int spd_expected = -1;
+
 namespace {
-
-bool skip_check[8];
-enum Check { kStatus, kFinite, kNan, kLambda, kSwap, kBatch, kDeterminism, kChecks };
-char const *const check_name[kChecks] = {"status", "finite", "nan", "lambda",
-                                         "swap", "batch", "determinism"};
-
-int current_method;  // method of the pw85_contact_function_method/pw85_dca call checked
+std::uint64_t digest_state = 0xcbf29ce484222325ULL;
+void fnv(void const *p, std::size_t n) {
+  unsigned char const *c = static_cast<unsigned char const *>(p);
+  for (std::size_t i = 0; i < n; ++i) digest_state = (digest_state ^ c[i]) * 0x100000001B3ULL;
+}
+}  // namespace
 
 [[noreturn]] void violated(Check c, char const *fn, int status) {
   std::fprintf(stderr, "promise violated: %s of %s (status %d, method %d)\n", check_name[c], fn,
@@ -46,28 +60,39 @@ int current_method;  // method of the pw85_contact_function_method/pw85_dca call
   __builtin_trap();
 }
 
-#define CHECK(check, cond, fn, status)                                        \
-  do {                                                                        \
-    if (!skip_check[check] && !(cond)) violated(check, fn, status);           \
-  } while (0)
+void record(char const *fn, long long value) {
+  fnv(fn, std::strlen(fn));
+  fnv(&current_method, sizeof current_method);
+  fnv(&value, sizeof value);
+  if (trace) std::fprintf(trace, "%s %d %lld\n", fn, current_method, value);
+}
 
-bool in_list(int s, std::initializer_list<int> l) {
-  for (int x : l)
-    if (s == x) return true;
-  return false;
+std::uint64_t digest() { return digest_state; }
+
+void spd_decision(char const *fn, int status) {
+  if (spd_expected >= 0)
+    CHECK(kSpd, (status == PW85_ERR_NOT_SPD) == (spd_expected == 1), fn, status);
 }
-bool all_nan(double const *v, int n) {
-  for (int i = 0; i < n; ++i)
-    if (!std::isnan(v[i])) return false;
-  return true;
+
+namespace {
+
+// The positive-definiteness decision of the pair, as the calls on (r, q1,
+// q2) must all take it (pw85.h, "Positive definiteness"): 1 when q1 or q2
+// is refused, 0 when both are accepted, -1 when a call may fail first for
+// another reason (a value not finite, r = 0). Probed once per matrix by
+// pw85_contact_function_method on (e_x, q, q).
+int spd_expectation(double const *r, double const *q1, double const *q2) {
+  if (!all_finite(r, 3) || !all_finite(q1, 6) || !all_finite(q2, 6) ||
+      (r[0] == 0.0 && r[1] == 0.0 && r[2] == 0.0))
+    return -1;
+  double const ex[3] = {1.0, 0.0, 0.0};
+  pw85_result res;
+  bool const refused = pw85_contact_function_method(ex, q1, q1, PW85_METHOD_DEFAULT, &res) ==
+                           PW85_ERR_NOT_SPD ||
+                       pw85_contact_function_method(ex, q2, q2, PW85_METHOD_DEFAULT, &res) ==
+                           PW85_ERR_NOT_SPD;
+  return refused ? 1 : 0;
 }
-bool all_finite(double const *v, int n) {
-  for (int i = 0; i < n; ++i)
-    if (!std::isfinite(v[i])) return false;
-  return true;
-}
-bool same_bits(void const *a, void const *b, std::size_t n) { return std::memcmp(a, b, n) == 0; }
-bool lambda_ok(double l) { return l >= 0.0 && l <= 1.0; }
 
 // q = R diag(s) R^T from six doubles: s_i = |p[i]| (1 when that is 0 or not
 // finite), R from the angles p[3..5] (reduced mod 2 pi).
@@ -99,6 +124,8 @@ void check_contact_function_method(double const *r, double const *q1, double con
   current_method = method;
   pw85_result a, b;
   int const s = pw85_contact_function_method(r, q1, q2, method, &a);
+  record(fn, s);
+  if (method >= PW85_METHOD_DEFAULT && method <= PW85_METHOD_ZHENG) spd_decision(fn, s);
   int const s2 = pw85_contact_function_method(r, q1, q2, method, &b);
   CHECK(kDeterminism, s == s2 && same_bits(&a, &b, sizeof a), fn, s);
   CHECK(kStatus,
@@ -123,6 +150,8 @@ void check_dca(double const *u, double const *q1, double const *q2, int method) 
   current_method = method;
   double d, d2;
   int const s = pw85_dca(u, q1, q2, method, &d);
+  record(fn, s);
+  if (method >= PW85_METHOD_DEFAULT && method <= PW85_METHOD_ZHENG) spd_decision(fn, s);
   int const s2 = pw85_dca(u, q1, q2, method, &d2);
   CHECK(kDeterminism, s == s2 && same_bits(&d, &d2, sizeof d), fn, s);
   bool const zheng = method == PW85_METHOD_ZHENG;
@@ -136,19 +165,27 @@ void check_dca(double const *u, double const *q1, double const *q2, int method) 
     CHECK(kNan, std::isnan(d), fn, s);
 }
 
-void check_one_pair(double const *r, double const *q1, double const *q2, int method,
-                    double lambda, double theta) {
+}  // namespace
+
+void check_one_pair(Input const &in) {
+  double const *r = in.r, *q1 = in.q1, *q2 = in.q2;
+  int const method = in.method;
+  double const lambda = in.lambda, theta = in.theta;
+  spd_expected = spd_expectation(r, q1, q2);
   for (int m = PW85_METHOD_DEFAULT; m <= PW85_METHOD_ZHENG; ++m) {
     check_contact_function_method(r, q1, q2, m);
     check_dca(r, q1, q2, m);
   }
   check_contact_function_method(r, q1, q2, method);
   check_dca(r, q1, q2, method);
+  current_method = -1;
 
   {
     char const *fn = "pw85_contact_function";
     double o[2], o2[2];
     int const s = pw85_contact_function(r, q1, q2, o);
+    record(fn, s);
+    spd_decision(fn, s);
     int const s2 = pw85_contact_function(r, q1, q2, o2);
     CHECK(kDeterminism, s == s2 && same_bits(o, o2, sizeof o), fn, s);
     CHECK(kStatus, in_list(s, {PW85_OK, PW85_ERR_INVALID_ARGUMENT, PW85_ERR_NOT_SPD,
@@ -165,33 +202,29 @@ void check_one_pair(double const *r, double const *q1, double const *q2, int met
     char const *fn = "pw85_overlap";
     double const mr[3] = {-r[0], -r[1], -r[2]};
     int const v = pw85_overlap(r, q1, q2);
+    record(fn, v);
+    spd_decision(fn, v);
     CHECK(kDeterminism, v == pw85_overlap(r, q1, q2), fn, v);
     CHECK(kStatus, in_list(v, {0, 1, PW85_ERR_INVALID_ARGUMENT, PW85_ERR_NOT_SPD,
                                PW85_ERR_INACCURATE}), fn, v);
     int const w = pw85_overlap(mr, q2, q1);
+    record(fn, w);
+    spd_decision(fn, w);
     // Both decided: the same verdict. (One may decide while the other runs
     // out of capacity, PW85_ERR_INACCURATE: documented for entries spanning
     // more than about 2^300.) Invalid arguments are invalid either way.
     if (v >= 0 && w >= 0) CHECK(kSwap, v == w, fn, v);
     if (v == PW85_ERR_INVALID_ARGUMENT) CHECK(kSwap, v == w, fn, v);
-    // PW85_ERR_NOT_SPD is "not positive definite in floating point or, for
-    // the pairs reaching the exact stage, exactly" (pw85.h): a matrix
-    // positive definite in floating point but not exactly may be refused in
-    // one order, at the exact stage, and decided by a filter in the other.
-    // A verdict against NOT_SPD is allowed only then: when the floating-point
-    // test (the one of pw85_contact_function_method) accepts both matrices.
-    if (v == PW85_ERR_NOT_SPD && w != v) {
-      pw85_result res;
-      CHECK(kSwap,
-            w >= 0 && pw85_contact_function_method(r, q1, q2, PW85_METHOD_DEFAULT, &res) !=
-                          PW85_ERR_NOT_SPD,
-            fn, v);
-    }
+    // One positive-definiteness decision (pw85.h): refused in one order,
+    // refused in the other.
+    if (v == PW85_ERR_NOT_SPD || w == PW85_ERR_NOT_SPD) CHECK(kSpd, v == w, fn, v);
   }
   {
     char const *fn = "pw85_contact";
     pw85_contact_t c, c2;
     int const s = pw85_contact(r, q1, q2, &c);
+    record(fn, s);
+    spd_decision(fn, s);
     int const s2 = pw85_contact(r, q1, q2, &c2);
     CHECK(kDeterminism, s == s2 && same_bits(&c, &c2, sizeof c), fn, s);
     CHECK(kStatus, in_list(s, {PW85_OK, PW85_ERR_INVALID_ARGUMENT, PW85_ERR_NOT_SPD,
@@ -209,6 +242,8 @@ void check_one_pair(double const *r, double const *q1, double const *q2, int met
     double d, d2;
     int ev, ev2;
     int const s = pw85_dca_ex(r, q1, q2, theta, &d, &ev);
+    record(fn, s);
+    spd_decision(fn, s);
     int const s2 = pw85_dca_ex(r, q1, q2, theta, &d2, &ev2);
     CHECK(kDeterminism, s == s2 && ev == ev2 && same_bits(&d, &d2, sizeof d), fn, s);
     CHECK(kStatus, in_list(s, {PW85_OK, PW85_ERR_INVALID_ARGUMENT, PW85_ERR_NOT_SPD,
@@ -222,6 +257,7 @@ void check_one_pair(double const *r, double const *q1, double const *q2, int met
     char const *fn = "pw85_dca_2d";
     double d, d2;
     int s = pw85_dca_2d(u, p1, p2, &d);
+    record(fn, s);
     int s2 = pw85_dca_2d(u, p1, p2, &d2);
     CHECK(kDeterminism, s == s2 && same_bits(&d, &d2, sizeof d), fn, s);
     CHECK(kStatus, in_list(s, {PW85_OK, PW85_ERR_INVALID_ARGUMENT, PW85_ERR_NOT_SPD,
@@ -233,6 +269,7 @@ void check_one_pair(double const *r, double const *q1, double const *q2, int met
     fn = "pw85_contact_function_2d";
     double o[2], o2[2];
     s = pw85_contact_function_2d(u, p1, p2, o);
+    record(fn, s);
     s2 = pw85_contact_function_2d(u, p1, p2, o2);
     CHECK(kDeterminism, s == s2 && same_bits(o, o2, sizeof o), fn, s);
     CHECK(kStatus, in_list(s, {PW85_OK, PW85_ERR_INVALID_ARGUMENT, PW85_ERR_NOT_SPD,
@@ -288,27 +325,37 @@ void check_one_pair(double const *r, double const *q1, double const *q2, int met
     std::memcpy(axes, q1, 48);
     std::memcpy(axes + 6, q2, 24);
     int const s = pw85_ellipsoid(r, axes, q);
+    record("pw85_ellipsoid", s);
     int const s2 = pw85_ellipsoid(r, axes, qq);
     CHECK(kDeterminism, s == s2 && same_bits(q, qq, sizeof q), "pw85_ellipsoid", s);
     CHECK(kStatus, in_list(s, {PW85_OK, PW85_ERR_INVALID_ARGUMENT, PW85_ERR_NOT_SPD,
                                PW85_ERR_NOT_ORTHONORMAL, PW85_ERR_RANGE}), "pw85_ellipsoid", s);
     if (s != PW85_OK) CHECK(kNan, all_nan(q, 6), "pw85_ellipsoid", s);
+    // PW85_ERR_NOT_SPD only for a radius <= 0 (pw85.h); positive radii
+    // whose Q is not representable give PW85_ERR_RANGE.
+    bool const radius_not_positive = !(r[0] > 0.0) || !(r[1] > 0.0) || !(r[2] > 0.0);
+    if (s == PW85_ERR_NOT_SPD) CHECK(kStatus, radius_not_positive, "pw85_ellipsoid", s);
     int const sr = pw85_ellipsoid_rotation(r, axes, q);
+    record("pw85_ellipsoid_rotation", sr);
     int const sr2 = pw85_ellipsoid_rotation(r, axes, qq);
     CHECK(kDeterminism, sr == sr2 && same_bits(q, qq, sizeof q), "pw85_ellipsoid_rotation", sr);
     CHECK(kStatus, in_list(sr, {PW85_OK, PW85_ERR_INVALID_ARGUMENT, PW85_ERR_NOT_SPD,
                                 PW85_ERR_NOT_ORTHONORMAL, PW85_ERR_RANGE}),
           "pw85_ellipsoid_rotation", sr);
     if (sr != PW85_OK) CHECK(kNan, all_nan(q, 6), "pw85_ellipsoid_rotation", sr);
+    if (sr == PW85_ERR_NOT_SPD) CHECK(kStatus, radius_not_positive, "pw85_ellipsoid_rotation", sr);
     int const sq = pw85_ellipsoid_quat(r, q2, q);
+    record("pw85_ellipsoid_quat", sq);
     int const sq2 = pw85_ellipsoid_quat(r, q2, qq);
     CHECK(kDeterminism, sq == sq2 && same_bits(q, qq, sizeof q), "pw85_ellipsoid_quat", sq);
     CHECK(kStatus, in_list(sq, {PW85_OK, PW85_ERR_INVALID_ARGUMENT, PW85_ERR_NOT_SPD,
                                 PW85_ERR_NOT_ORTHONORMAL, PW85_ERR_RANGE}),
           "pw85_ellipsoid_quat", sq);
     if (sq != PW85_OK) CHECK(kNan, all_nan(q, 6), "pw85_ellipsoid_quat", sq);
+    if (sq == PW85_ERR_NOT_SPD) CHECK(kStatus, radius_not_positive, "pw85_ellipsoid_quat", sq);
     double ra[3], ra2[3], ro[9], ro2[9], qu[4], qu2[4];
     int const sa = pw85_ellipsoid_axes(q1, ra, ro, qu);
+    record("pw85_ellipsoid_axes", sa);
     int const sa2 = pw85_ellipsoid_axes(q1, ra2, ro2, qu2);
     CHECK(kDeterminism, sa == sa2 && same_bits(ra, ra2, sizeof ra) &&
           same_bits(ro, ro2, sizeof ro) && same_bits(qu, qu2, sizeof qu), "pw85_ellipsoid_axes", sa);
@@ -317,12 +364,32 @@ void check_one_pair(double const *r, double const *q1, double const *q2, int met
           "pw85_ellipsoid_axes", sa);
     if (sa != PW85_OK && sa != PW85_ERR_NO_CONVERGENCE)
       CHECK(kNan, all_nan(ra, 3) && all_nan(ro, 9) && all_nan(qu, 4), "pw85_ellipsoid_axes", sa);
+    if (all_finite(q1, 6)) {
+      // One decision: pw85_ellipsoid_axes refuses q1 as every call does.
+      double const ex[3] = {1.0, 0.0, 0.0};
+      pw85_result res;
+      bool const refused = pw85_contact_function_method(ex, q1, q1, PW85_METHOD_DEFAULT, &res) ==
+                           PW85_ERR_NOT_SPD;
+      CHECK(kSpd, (sa == PW85_ERR_NOT_SPD) == refused, "pw85_ellipsoid_axes", sa);
+    }
     if (sa == PW85_OK) {
       CHECK(kStatus, ra[0] <= ra[1] && ra[1] <= ra[2] && qu[0] >= 0.0, "pw85_ellipsoid_axes", sa);
-      // The outputs give a q back through both constructors (pw85.h).
-      CHECK(kStatus, pw85_ellipsoid_rotation(ra, ro, qq) == PW85_OK &&
-                         pw85_ellipsoid_quat(ra, qu, qq) == PW85_OK,
-            "pw85_ellipsoid_axes", sa);
+      // The outputs give a q back through both constructors (pw85.h), the
+      // same matrix within the accuracy of the sweeps, 10 u ||q|| entrywise,
+      // and a few roundings of each constructor (u ||q|| each, allowed 6 u
+      // in all; entries near the subnormal range: DBL_MIN absolute).
+      double qr[6], qt[6];
+      int const back_r = pw85_ellipsoid_rotation(ra, ro, qr);
+      int const back_q = pw85_ellipsoid_quat(ra, qu, qt);
+      CHECK(kStatus, back_r == PW85_OK && back_q == PW85_OK, "pw85_ellipsoid_axes", sa);
+      double const norm = ra[2] * ra[2];
+      if (std::isfinite(norm)) {
+        double const tol = 16.0 * 0x1p-53 * norm + 0x1p-1022;
+        bool close = true;
+        for (int i = 0; i < 6; ++i)
+          close = close && std::fabs(qr[i] - q1[i]) <= tol && std::fabs(qt[i] - q1[i]) <= tol;
+        CHECK(kAxes, close, "pw85_ellipsoid_axes", sa);
+      }
     }
     CHECK(kStatus, pw85_strerror(method) != nullptr, "pw85_strerror", method);
   }
@@ -359,6 +426,7 @@ void check_one_pair(double const *r, double const *q1, double const *q2, int met
       auto cf = k ? pw85_legacy_contact_function2 : pw85_legacy_contact_function1;
       double o[2], o2[2];
       int const s = cf(r, q1, q2, o), s2 = cf(r, q1, q2, o2);
+      record(fn, s);
       CHECK(kDeterminism, s == s2 && same_bits(o, o2, sizeof o), fn, s);
       CHECK(kStatus, in_list(s, {PW85_OK, PW85_ERR_INVALID_ARGUMENT, PW85_ERR_NOT_SPD,
                                  PW85_ERR_NO_CONVERGENCE, PW85_ERR_INACCURATE}), fn, s);
@@ -371,9 +439,11 @@ void check_one_pair(double const *r, double const *q1, double const *q2, int met
   }
 }
 
+
 // The batch calls over the scene {0, r}, pairs (0, 1) and (1, 0): each pair
 // gives the bits of the one-pair call (r12 = r and -r, exactly).
-void check_batch(double const *r, double const *q1, double const *q2) {
+void check_batch(Input const &in) {
+  double const *r = in.r, *q1 = in.q1, *q2 = in.q2;
   double const centres[6] = {0.0, 0.0, 0.0, r[0], r[1], r[2]};
   double q[12];
   std::memcpy(q, q1, 48);
@@ -407,35 +477,56 @@ void check_batch(double const *r, double const *q1, double const *q2) {
   CHECK(kBatch, st[1] == s && same_bits(&c[1], &c1, sizeof c1), "pw85_contact_batch", s);
 }
 
-}  // namespace
+}  // namespace fuzz
 
 extern "C" int LLVMFuzzerInitialize(int *, char ***) {
+  using fuzz::check_name;
   if (char const *skip = std::getenv("PW85_FUZZ_SKIP")) {
-    for (int c = 0; c < kChecks; ++c) {
+    for (int c = 0; c < fuzz::kChecks; ++c) {
       std::size_t const n = std::strlen(check_name[c]);
       for (char const *p = skip; (p = std::strstr(p, check_name[c])) != nullptr; p += n)
-        if ((p == skip || p[-1] == ',') && (p[n] == '\0' || p[n] == ',')) skip_check[c] = true;
+        if ((p == skip || p[-1] == ',') && (p[n] == '\0' || p[n] == ','))
+          fuzz::skip_check[c] = true;
     }
   }
   return 0;
 }
 
 extern "C" int LLVMFuzzerTestOneInput(std::uint8_t const *data, std::size_t size) {
-  unsigned char buf[2 + 17 * 8] = {};
+  unsigned char buf[2 + 34 * 8] = {};
   std::memcpy(buf, data, size < sizeof buf ? size : sizeof buf);
   unsigned const mode = buf[0];
-  int const method = static_cast<signed char>(buf[1]);
-  double v[17];
+  double v[34];
   std::memcpy(v, buf + 2, sizeof v);
-  double r[3] = {v[0], v[1], v[2]}, q1[6], q2[6];
-  if (mode & 1) build_form(v + 3, q1);
-  else std::memcpy(q1, v + 3, sizeof q1);
-  if (mode & 2) build_form(v + 9, q2);
-  else std::memcpy(q2, v + 9, sizeof q2);
-  if (mode & 4) r[0] = r[1] = r[2] = 0.0;
+  fuzz::Input in;
+  in.method = static_cast<signed char>(buf[1]);
+  std::memcpy(in.r, v, sizeof in.r);
+  if (mode & 1) fuzz::build_form(v + 3, in.q1);
+  else std::memcpy(in.q1, v + 3, sizeof in.q1);
+  if (mode & 2) fuzz::build_form(v + 9, in.q2);
+  else std::memcpy(in.q2, v + 9, sizeof in.q2);
+  if (mode & 4) in.r[0] = in.r[1] = in.r[2] = 0.0;
   if (mode & 8)
-    for (double &x : r) x = -x;
-  check_one_pair(r, q1, q2, method, v[15], v[16]);
-  check_batch(r, q1, q2);
+    for (double &x : in.r) x = -x;
+  if (mode & 64) in.r[1] = in.r[2] = 0.0;
+  in.lambda = v[15];
+  in.theta = v[16];
+  in.has_box = (mode & 16) != 0;
+  std::memcpy(in.box, v + 17, sizeof in.box);
+  if (!(mode & 32)) in.box[3] = in.box[4] = in.box[5] = 0.0;
+  in.with_time = (mode & 128) != 0;
+  std::memcpy(in.v12, v + 23, sizeof in.v12);
+  std::memcpy(in.w1, v + 26, sizeof in.w1);
+  std::memcpy(in.w2, v + 29, sizeof in.w2);
+  in.t_max = v[32];
+  in.scale = v[33];
+
+  fuzz::check_one_pair(in);
+  fuzz::check_batch(in);
+  fuzz::check_pairs(in);
+  fuzz::check_scene(in);
+  fuzz::check_configuration(in);
+  fuzz::check_derivatives(in);
+  if (in.with_time) fuzz::check_contact_time(in);
   return 0;
 }

@@ -107,18 +107,24 @@ inline long long stencil(CellGrid const &g, int d, double rho) noexcept {
   return static_cast<long long>(k) + 1;
 }
 
-// Calls fn(id) for each distinct cell within k[d] of cell c along every
-// axis d (cyclically in a periodic grid, clipped in an open one).
+// Calls fn(id, wrap) for each distinct cell within k[d] of cell c along
+// every axis d (cyclically in a periodic grid, clipped in an open one);
+// wrap[d] in {-1, 0, 1}: the cell lies that many periods from c's side
+// along d (its particles' images near c are shifted by wrap[d] lattice
+// vectors), or wrap null where an axis is enumerated whole (2 k[d] + 1 >=
+// n[d]: the image is not the cell's).
 template <class Fn>
 inline void for_each_neighbour_cell(CellGrid const &g, long long const c[3],
                                     long long const k[3], Fn fn) noexcept {
   long long first[3], count[3];
+  bool whole = false;
   for (int d = 0; d < 3; ++d) {
     long long const n = g.n[d];
     if (g.periodic) {
       if (2 * k[d] + 1 >= n) {
         first[d] = 0;
         count[d] = n;
+        whole = true;
       } else {
         first[d] = c[d] - k[d];
         count[d] = 2 * k[d] + 1;
@@ -131,22 +137,45 @@ inline void for_each_neighbour_cell(CellGrid const &g, long long const c[3],
     }
   }
   long long x[3];
+  int wrap[3];
   for (long long iz = 0; iz < count[2]; ++iz) {
     x[2] = first[2] + iz;
-    if (x[2] < 0) x[2] += g.n[2];
-    if (x[2] >= g.n[2]) x[2] -= g.n[2];
+    wrap[2] = x[2] < 0 ? -1 : (x[2] >= g.n[2] ? 1 : 0);
+    x[2] -= wrap[2] * g.n[2];
     for (long long iy = 0; iy < count[1]; ++iy) {
       x[1] = first[1] + iy;
-      if (x[1] < 0) x[1] += g.n[1];
-      if (x[1] >= g.n[1]) x[1] -= g.n[1];
+      wrap[1] = x[1] < 0 ? -1 : (x[1] >= g.n[1] ? 1 : 0);
+      x[1] -= wrap[1] * g.n[1];
       for (long long ix = 0; ix < count[0]; ++ix) {
         x[0] = first[0] + ix;
-        if (x[0] < 0) x[0] += g.n[0];
-        if (x[0] >= g.n[0]) x[0] -= g.n[0];
-        fn(cell_id(g, x));
+        wrap[0] = x[0] < 0 ? -1 : (x[0] >= g.n[0] ? 1 : 0);
+        x[0] -= wrap[0] * g.n[0];
+        fn(cell_id(g, x), whole ? static_cast<int const *>(nullptr) : wrap);
       }
     }
   }
+}
+
+// The centre x wrapped into a periodic box, H (f - floor f) with f its
+// fractional coordinates (x itself without a box).
+inline void wrapped_centre(batch::Box const &b, double const x[3], double w[3]) noexcept {
+  if (!b.periodic) {
+    w[0] = x[0], w[1] = x[1], w[2] = x[2];
+    return;
+  }
+  double f[3];
+  fractional(b, x, f);
+  for (int d = 0; d < 3; ++d) f[d] -= floor_small(f[d]);
+  w[0] = f[0] * b.length[0] + f[1] * b.xy_ly + f[2] * b.xz_lz;
+  w[1] = f[1] * b.length[1] + f[2] * b.yz_lz;
+  w[2] = f[2] * b.length[2];
+}
+
+// The lattice vector wrap[0] a1 + wrap[1] a2 + wrap[2] a3 of a periodic box.
+inline void lattice_shift(batch::Box const &b, int const wrap[3], double s[3]) noexcept {
+  s[0] = wrap[0] * b.length[0] + wrap[1] * b.xy_ly + wrap[2] * b.xz_lz;
+  s[1] = wrap[1] * b.length[1] + wrap[2] * b.yz_lz;
+  s[2] = wrap[2] * b.length[2];
 }
 
 // Sets up g for points closer than rho to be found with a stencil of

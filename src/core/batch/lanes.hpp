@@ -89,14 +89,14 @@ void default_lanes_of(long long k0, Pair const &pair, DefaultLanes &dl) noexcept
 // decided with a solution (kOk, kInaccurate) of magnitudes that
 // contact_derivatives takes without rescaling; false: the one-pair call
 // must compute the pair.
-inline bool lane_derivatives(DefaultLanes const &dl, int l, Derivatives &out,
-                             int &status) noexcept {
+inline bool lane_derivatives(DefaultLanes const &dl, int l, DerivativeFields fields,
+                             Derivatives &out, int &status) noexcept {
   int const s = dl.status[l];
   if (s != kOk && s != kInaccurate) return false;
   Vec3 const r = load_vec3(dl.r[l]);
   Sym3 const a = load_sym3(dl.q1[l]), b = load_sym3(dl.q2[l]);
   if (!derivatives_from_default_ok(r, a, b)) return false;
-  status = contact_derivatives_from_default(r, a, b, Status(s), dl.res[l], out);
+  status = contact_derivatives_from_default(r, a, b, Status(s), dl.res[l], out, fields);
   return true;
 }
 

@@ -143,8 +143,12 @@ inline bool spheres_apart(double const r[3], double reach) noexcept {
 
 // Upper bound of n^T Q n for a positive definite Q: the computed value plus
 // a bound of its rounding error, 32 u sum_a n_a^2 Q_aa (>= gamma_6 sum_ab
-// |n_a| |Q_ab| |n_b|, as |Q_ab| <= (Q_aa + Q_bb) / 2). T: double, or a
-// vector of doubles (one pair per lane).
+// |n_a| |Q_ab| |n_b|, as |Q_ab| <= (Q_aa + Q_bb) / 2), hence >= 0 unless a
+// product overflows (inf - inf: NaN) or underflows (a tiny negative value).
+// Neither is clamped: the square root is then NaN or +inf and the plane
+// test (S1) below declines, as it must (a bound clamped to 0 would let it
+// separate overlapping ellipsoids). T: double, or a vector of doubles (one
+// pair per lane).
 template <class T>
 PW85_ALWAYS_INLINE T support2_upper(T const q[6], T const n[3]) noexcept {
   T const a0 = q[0] * n[0] + q[1] * n[1] + q[2] * n[2];
@@ -152,7 +156,7 @@ PW85_ALWAYS_INLINE T support2_upper(T const q[6], T const n[3]) noexcept {
   T const a2 = q[2] * n[0] + q[4] * n[1] + q[5] * n[2];
   T const h = n[0] * a0 + n[1] * a1 + n[2] * a2;
   T const diag = q[0] * n[0] * n[0] + q[3] * n[1] * n[1] + q[5] * n[2] * n[2];
-  return lanes::vmax(h + 32 * kU * diag, T{} + 0.0);
+  return h + 32 * kU * diag;
 }
 
 // (S1): true (each lane: a true mask) only when the plane of normal n =
@@ -317,6 +321,7 @@ void free_particle_arrays(Scene &s) noexcept {
   std::free(s.centres);
   std::free(s.q);
   std::free(s.radius);
+  std::free(s.wrapped);
   std::free(s.next);
   std::free(s.prev);
   std::free(s.cell_of);
@@ -405,6 +410,7 @@ Status scene_assign(Scene &scene, long long n, double const *centres, double con
     next_scene.centres = allocate<double>(3 * n);
     next_scene.q = allocate<double>(6 * n);
     next_scene.radius = allocate<double>(n);
+    next_scene.wrapped = allocate<double>(3 * n);
     next_scene.next = allocate<long long>(n);
     next_scene.prev = allocate<long long>(n);
     next_scene.cell_of = allocate<long long>(n);
@@ -414,7 +420,7 @@ Status scene_assign(Scene &scene, long long n, double const *centres, double con
     next_scene.head = allocate<long long>(grid.cells);
     next_scene.grid_capacity = grid.cells;
   }
-  bool const ok = (!grow || (next_scene.centres && next_scene.q && next_scene.radius &&
+  bool const ok = (!grow || (next_scene.centres && next_scene.q && next_scene.radius && next_scene.wrapped &&
                              next_scene.next && next_scene.prev && next_scene.cell_of)) &&
                   (!grow_grid || next_scene.head);
   // On failure the new arrays go, else the old ones they replace.
@@ -434,6 +440,7 @@ Status scene_assign(Scene &scene, long long n, double const *centres, double con
   for (long long c = 0; c < grid.cells; ++c) scene.head[c] = -1;
   for (long long i = n - 1; i >= 0; --i) {
     scene.radius[i] = bounding_radius(q + 6 * i);
+    wrapped_centre(box, centres + 3 * i, scene.wrapped + 3 * i);
     link(scene, i, cell_of_point(grid, centres + 3 * i));
   }
   return kOk;
@@ -445,8 +452,8 @@ namespace {
 // sorted positions of cell c's particles (ascending index within a cell),
 // order[k] the index of sorted particle k, w its centre wrapped into the
 // box (periodic: H (f - floor f), f the fractional coordinates; open: the
-// centre), rad its bounding radius scaled by s; centre and q its centre and
-// matrix (times s^2), in the sorted order for locality.
+// centre), rad its bounding radius scaled by s, q its matrix times s^2, in
+// the sorted order for locality.
 // Entries readable past the end of the sorted arrays (scan_range's lanes).
 constexpr int kScanPad = 4;
 
@@ -454,60 +461,83 @@ struct Sorted {
   CellGrid grid;
   Buffer<long long> start, order;
   Buffer<double> wx, wy, wz, rad;
-  Buffer<double> centre, q;  // centres as given, matrices times s^2, sorted
+  Buffer<double> q;  // matrices times s^2, sorted
   // Bound of |w_b + shift - w_a - r12| over the pairs (rounding of the
   // wrapped centres and of r12): 0 without a box.
   double wrap_error = 0;
 };
 
+// The bound of Sorted::wrap_error for centres whose fractional coordinates
+// are at most fmax in magnitude.
+inline double wrap_error_bound(Box const &box, double fmax) noexcept {
+  double const hsum = box.length[0] + std::fabs(box.xy_ly) + std::fabs(box.xz_lz) + box.length[1] +
+                      std::fabs(box.yz_lz) + box.length[2];
+  return 64 * kU * (fmax + 2) * hsum;
+}
+
 // The per-particle loops run on nt threads (each particle's values depend on
-// it alone); the counting sort itself is serial.
+// it alone); the counting sort itself is serial. The grid is sized for the
+// largest wrap error any accepted centre can have (kMaxFractional), the
+// sphere tests use the one of the centres at hand.
 Status sort_by_cell(Scene const &scene, double rho_scaled, double radius_scale, double s2,
                     int nt, Sorted &q) noexcept {
   long long const n = scene.n;
   Box const &box = scene.box;
-  double lo[3], hi[3];
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   Buffer<double> frac;
   Buffer<long long> cell_of, fill;
   if (!cell_of.reserve(n) || (box.periodic && !frac.reserve(3 * n))) return kNoMemory;
-  if (box.periodic) {
-    // Fractional coordinates, once; the wrap error grows with the largest.
-    double fmax = 0;
-#pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static) reduction(max : fmax)
-    for (long long i = 0; i < n; ++i) {
-      double *f = frac.data + 3 * i;
-      fractional(box, scene.centres + 3 * i, f);
-      for (int d = 0; d < 3; ++d) {
-        double const a = std::fabs(f[d]);
-        fmax = a > fmax ? a : fmax;
-      }
-    }
-    double const hsum = box.length[0] + std::fabs(box.xy_ly) + std::fabs(box.xz_lz) + box.length[1] +
-                        std::fabs(box.yz_lz) + box.length[2];
-    q.wrap_error = 64 * kU * (fmax + 2) * hsum;
-    lo[0] = lo[1] = lo[2] = hi[0] = hi[1] = hi[2] = 0;
-  } else {
-    centre_bounds(n, scene.centres, lo, hi);
-  }
-  cell_grid_init(q.grid, box, lo, hi, rho_scaled + 2 * q.wrap_error, max_cells_for(n), kSplit);
+  if (!box.periodic) centre_bounds(n, scene.centres, lo, hi);
+  double const grid_error = box.periodic ? wrap_error_bound(box, kMaxFractional) : 0.0;
+  cell_grid_init(q.grid, box, lo, hi, rho_scaled + 2 * grid_error, max_cells_for(n), kSplit);
   if (q.grid.periodic && (q.grid.n[0] < 2 * kSplit + 1 || q.grid.n[1] < 2 * kSplit + 1 ||
                           q.grid.n[2] < 2 * kSplit + 1))
-    cell_grid_init(q.grid, box, lo, hi, rho_scaled + 2 * q.wrap_error, max_cells_for(n), 1);
+    cell_grid_init(q.grid, box, lo, hi, rho_scaled + 2 * grid_error, max_cells_for(n), 1);
   long long const cells = q.grid.cells;
   if (!q.start.reserve(cells + 1) || !q.order.reserve(n) || !fill.reserve(cells) ||
       !q.wx.reserve(n + kScanPad) || !q.wy.reserve(n + kScanPad) ||
-      !q.wz.reserve(n + kScanPad) || !q.rad.reserve(n + kScanPad) ||
-      !q.centre.reserve(3 * n) || !q.q.reserve(6 * n))
+      !q.wz.reserve(n + kScanPad) || !q.rad.reserve(n + kScanPad) || !q.q.reserve(6 * n))
     return kNoMemory;
+  // Cells, and (periodic) the fractional coordinates wrapped into [0, 1),
+  // once; the wrap error grows with the largest unwrapped one.
+  double fmax = 0;
+  if (box.periodic) {
+    // fractional() and cell_coords_fractional() with their constants
+    // hoisted: the same operations, the same values.
+    double tl[3];
+    tilts(box, tl);
+    double const t02 = tl[0] * tl[2] - tl[1];
+    double const nd[3] = {static_cast<double>(q.grid.n[0]), static_cast<double>(q.grid.n[1]),
+                          static_cast<double>(q.grid.n[2])};
+    CellGrid const &g = q.grid;
+#pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static) reduction(max : fmax)
+    for (long long i = 0; i < n; ++i) {
+      double const *x = scene.centres + 3 * i;
+      double *f = frac.data + 3 * i;
+      f[2] = x[2] * box.inv_length[2];
+      f[1] = (x[1] - tl[2] * x[2]) * box.inv_length[1];
+      f[0] = (x[0] - tl[0] * x[1] + t02 * x[2]) * box.inv_length[0];
+      long long k[3];
+      for (int d = 0; d < 3; ++d) {
+        double const a = std::fabs(f[d]);
+        fmax = a > fmax ? a : fmax;
+        f[d] -= floor_small(f[d]);
+        k[d] = static_cast<long long>(f[d] * nd[d]);
+        k[d] = k[d] < 0 ? 0 : (k[d] >= g.n[d] ? g.n[d] - 1 : k[d]);
+      }
+      cell_of.data[i] = k[0] + g.n[0] * (k[1] + g.n[1] * k[2]);
+    }
+  } else {
+#pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static)
+    for (long long i = 0; i < n; ++i) {
+      long long cc[3];
+      cell_coords(q.grid, scene.centres + 3 * i, cc);
+      cell_of.data[i] = cell_id(q.grid, cc);
+    }
+  }
+  q.wrap_error = box.periodic ? wrap_error_bound(box, fmax) : 0.0;
   long long *start = q.start.data;
   for (long long c = 0; c <= cells; ++c) start[c] = 0;
-#pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static)
-  for (long long i = 0; i < n; ++i) {
-    long long cc[3];
-    if (box.periodic) cell_coords_fractional(q.grid, frac.data + 3 * i, cc);
-    else cell_coords(q.grid, scene.centres + 3 * i, cc);
-    cell_of.data[i] = cell_id(q.grid, cc);
-  }
   for (long long i = 0; i < n; ++i) ++start[cell_of.data[i] + 1];
   for (long long c = 0; c < cells; ++c) start[c + 1] += start[c];
   std::memcpy(fill.data, start, static_cast<size_t>(cells) * sizeof(long long));
@@ -518,8 +548,7 @@ Status sort_by_cell(Scene const &scene, double rho_scaled, double radius_scale, 
     double const *c = scene.centres + 3 * i;
     double w[3] = {c[0], c[1], c[2]};
     if (box.periodic) {
-      double f[3];
-      for (int d = 0; d < 3; ++d) f[d] = frac.data[3 * i + d] - floor_small(frac.data[3 * i + d]);
+      double const *f = frac.data + 3 * i;
       w[0] = f[0] * box.length[0] + f[1] * box.xy_ly + f[2] * box.xz_lz;
       w[1] = f[1] * box.length[1] + f[2] * box.yz_lz;
       w[2] = f[2] * box.length[2];
@@ -528,7 +557,6 @@ Status sort_by_cell(Scene const &scene, double rho_scaled, double radius_scale, 
     q.wy.data[k] = w[1];
     q.wz.data[k] = w[2];
     q.rad.data[k] = scene.radius[i] * radius_scale;
-    for (int d = 0; d < 3; ++d) q.centre.data[3 * k + d] = c[d];
     for (int t = 0; t < 6; ++t) q.q.data[6 * k + t] = s2 * scene.q[6 * i + t];
   }
   for (long long k = n; k < n + kScanPad; ++k) q.wx.data[k] = q.wy.data[k] = q.wz.data[k] = q.rad.data[k] = 0;
@@ -558,8 +586,9 @@ struct CandidateSink {
     // r12 of the pair (i, j), i < j.
     bool const forward = ia < ib;
     long long const lo = forward ? a : b, hi = forward ? b : a;
+    long long const i = forward ? ia : ib, j = forward ? ib : ia;
     double r[3];
-    if (!pair_r12(scene.box, sorted.centre.data + 3 * lo, sorted.centre.data + 3 * hi, r)) {
+    if (!pair_r12(scene.box, scene.centres + 3 * i, scene.centres + 3 * j, r)) {
       status = kInvalidArgument;
       return;
     }
@@ -581,59 +610,118 @@ struct CandidateSink {
   }
 };
 
-// Sorted positions [b0, b1) against particle a, their images shifted by
-// shift.
-inline void scan_range(Sorted const &q, long long a, long long b0, long long b1,
-                       double const shift[3], CandidateSink &sink) noexcept {
-  double const ax = q.wx.data[a] - shift[0], ay = q.wy.data[a] - shift[1],
-               az = q.wz.data[a] - shift[2];
-  double const ra = q.rad.data[a] + q.wrap_error;
+// Lane l of compress[bits][l]: the position of the l-th set bit of bits
+// (4 bits), 0 past the last: the passing lanes of a sphere test, packed.
+constexpr signed char kCompress[16][4] = {
+    {0, 0, 0, 0}, {0, 0, 0, 0}, {1, 0, 0, 0}, {0, 1, 0, 0}, {2, 0, 0, 0}, {0, 2, 0, 0},
+    {1, 2, 0, 0}, {0, 1, 2, 0}, {3, 0, 0, 0}, {0, 3, 0, 0}, {1, 3, 0, 0}, {0, 1, 3, 0},
+    {2, 3, 0, 0}, {0, 2, 3, 0}, {1, 2, 3, 0}, {0, 1, 2, 3}};
+
+// A run of consecutive sorted positions [b0, b1) (cells adjacent along x)
+// and the image shift of its particles.
+struct ScanRange {
+  long long b0, b1;
+  double shift[3];
+};
+// Ranges of one cell: (1 + k + k (2k + 1)) rows of the half stencil of
+// half-width k <= 2, two runs each at most.
+constexpr int kMaxRanges = 32;
+
+// Hits of a scan: sorted position b times kHitRanges plus the index of the
+// range it was found in.
+constexpr long long kHitRanges = 64;
+static_assert(kMaxRanges + 1 <= kHitRanges, "a range index fits in a hit");
+
+// GCC 12 reports the vectors of separate_hits, each assigned whole before
+// its use, as maybe uninitialised once inlined into a target variant.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+// (S1) on the hits of particle a (as[r]: the centre of a less the shift of
+// range index r), four at a time (the last group padded with its first
+// pair); the survivors go to the sink. The lanes are built from scalars in
+// registers (no store of scalars reloaded as a vector).
+PW85_ALWAYS_INLINE void separate_hits(Sorted const &q, long long a, double const (*as)[3],
+                                      long long const *hits, int m, CandidateSink &sink) noexcept {
+  using V = lanes::VecD<kScanPad>;
+  static_assert(kScanPad == 4, "four lanes");
   double const *wx = q.wx.data, *wy = q.wy.data, *wz = q.wz.data, *rad = q.rad.data;
-  bool const exact = !q.grid.periodic;
-  // Branch-free first pass (most pairs fail the test, at unpredictable
-  // places): the passing b are gathered, then handled.
-  constexpr long long kChunk = 64;
-  long long hits[kChunk];
-  for (long long c0 = b0; c0 < b1; c0 += kChunk) {
-    long long const c1 = c0 + kChunk < b1 ? c0 + kChunk : b1;
-    long long const len = c1 - c0;
-    double const *px = wx + c0, *py = wy + c0, *pz = wz + c0, *pr = rad + c0;
-    // Four lanes at a time (GCC vector extensions; the arrays carry
-    // kScanPad readable entries past their end, lanes past len dropped).
-    using V = lanes::VecD<kScanPad>;
-    V const vax = {ax, ax, ax, ax}, vay = {ay, ay, ay, ay}, vaz = {az, az, az, az};
-    V const vra = {ra, ra, ra, ra};
-    int m = 0;
-    for (long long t = 0; t < len; t += kScanPad) {
-      V x, y, z, r;
-      std::memcpy(&x, px + t, sizeof x);
-      std::memcpy(&y, py + t, sizeof y);
-      std::memcpy(&z, pz + t, sizeof z);
-      std::memcpy(&r, pr + t, sizeof r);
-      V const dx = x - vax, dy = y - vay, dz = z - vaz, reach = vra + r;
+  double const *qa = q.q.data + 6 * a;
+  V const qav[6] = {V{} + qa[0], V{} + qa[1], V{} + qa[2], V{} + qa[3], V{} + qa[4], V{} + qa[5]};
+  V const vrerr = V{} + (q.grid.periodic ? q.wrap_error : 0.0);
+  sink.spheres += m;
+  for (int t = 0; t < m; t += kScanPad) {
+    long long b[kScanPad];
+    double const *ab[kScanPad], *qb[kScanPad];
+    for (int l = 0; l < kScanPad; ++l) {
+      long long const h = hits[t + l < m ? t + l : t];
+      b[l] = h / kHitRanges;
+      ab[l] = as[h % kHitRanges];
+      qb[l] = q.q.data + 6 * b[l];
+    }
+    V d[3], qbv[6];
+    d[0] = V{wx[b[0]], wx[b[1]], wx[b[2]], wx[b[3]]} - V{ab[0][0], ab[1][0], ab[2][0], ab[3][0]};
+    d[1] = V{wy[b[0]], wy[b[1]], wy[b[2]], wy[b[3]]} - V{ab[0][1], ab[1][1], ab[2][1], ab[3][1]};
+    d[2] = V{wz[b[0]], wz[b[1]], wz[b[2]], wz[b[3]]} - V{ab[0][2], ab[1][2], ab[2][2], ab[3][2]};
+    for (int k = 0; k < 6; ++k) qbv[k] = V{qb[0][k], qb[1][k], qb[2][k], qb[3][k]};
+    auto const separated = plane_separates(d, qav, qbv, vrerr);
+    int const w = m - t < kScanPad ? m - t : kScanPad;
+    for (int l = 0; l < w; ++l)
+      if (!separated[l]) sink.candidate(a, b[l], rad[b[l]] + rad[a]);
+  }
+}
+
+// Particle a against the ranges (range r < 0: its own cell after it, [a + 1,
+// own_end), no shift). Branch-free first pass (most pairs fail the sphere
+// test, at unpredictable places): the passing b are packed into hits with
+// their range, then separate_hits. Inlined into each instruction-set
+// variant of scan_cell.
+PW85_ALWAYS_INLINE void scan_particle(Sorted const &q, long long a, ScanRange const *ranges,
+                                      int nranges, long long own_end,
+                                      CandidateSink &sink) noexcept {
+  using V = lanes::VecD<kScanPad>;
+  double const *wx = q.wx.data, *wy = q.wy.data, *wz = q.wz.data, *rad = q.rad.data;
+  V const vra = V{} + (rad[a] + q.wrap_error);
+  // a's centre less each range's shift (index r + 1; 0: its own cell).
+  double as[kMaxRanges + 1][3];
+  as[0][0] = wx[a], as[0][1] = wy[a], as[0][2] = wz[a];
+  for (int r = 0; r < nranges; ++r)
+    for (int d = 0; d < 3; ++d) as[r + 1][d] = as[0][d] - ranges[r].shift[d];
+  constexpr int kHits = 128;
+  long long hits[kHits + kScanPad];
+  int m = 0;
+  for (int r = -1; r < nranges; ++r) {
+    long long const b0 = r < 0 ? a + 1 : ranges[r].b0, b1 = r < 0 ? own_end : ranges[r].b1;
+    double const *ab = as[r + 1];
+    V const vax = V{} + ab[0], vay = V{} + ab[1], vaz = V{} + ab[2];
+    // Four lanes at a time (the arrays carry kScanPad readable entries past
+    // their end, lanes past b1 dropped).
+    for (long long b = b0; b < b1; b += kScanPad) {
+      V x, y, z, rb;
+      std::memcpy(&x, wx + b, sizeof x);
+      std::memcpy(&y, wy + b, sizeof y);
+      std::memcpy(&z, wz + b, sizeof z);
+      std::memcpy(&rb, rad + b, sizeof rb);
+      V const dx = x - vax, dy = y - vay, dz = z - vaz, reach = vra + rb;
       auto const near = dx * dx + dy * dy + dz * dz < reach * reach * (1 + kMargin);
-      long long const lanes_left = len - t < kScanPad ? len - t : kScanPad;
-      for (int l = 0; l < lanes_left; ++l) {
-        hits[m] = c0 + t + l;
-        m += near[l] != 0;
+      int bits = static_cast<int>((near[0] & 1) | (near[1] & 2) | (near[2] & 4) | (near[3] & 8));
+      if (b1 - b < kScanPad) bits &= (1 << (b1 - b)) - 1;
+      for (int l = 0; l < kScanPad; ++l) hits[m + l] = (b + kCompress[bits][l]) * kHitRanges + (r + 1);
+      m += __builtin_popcount(static_cast<unsigned>(bits));
+      if (m > kHits - kScanPad) {
+        separate_hits(q, a, as, hits, m, sink);
+        m = 0;
       }
     }
-    // (S1) on the passing pairs (qa the same for all).
-    sink.spheres += m;
-    double const *qa = q.q.data + 6 * a;
-    double const rerr = exact ? 0.0 : q.wrap_error;
-    for (int t = 0; t < m; ++t) {
-      long long const b = hits[t];
-      double const d[3] = {wx[b] - ax, wy[b] - ay, wz[b] - az};
-      if (!plane_separates(d, qa, q.q.data + 6 * b, rerr))
-        sink.candidate(a, b, rad[b] + q.rad.data[a]);
-    }
   }
+  separate_hits(q, a, as, hits, m, sink);
 }
 
 // Cell c's pairs, fast path (grid of cells at least rho / split wide,
 // split = 1 or 2; every periodic axis with at least 2 split + 1 cells).
-void scan_cell(Sorted const &q, long long c, int split, CandidateSink &sink) noexcept {
+PW85_ALWAYS_INLINE void scan_cell_body(Sorted const &q, long long c, int split,
+                                       CandidateSink &sink) noexcept {
   CellGrid const &g = q.grid;
   Box const &box = g.box;
   long long const nx = g.n[0], ny = g.n[1], nz = g.n[2];
@@ -642,7 +730,9 @@ void scan_cell(Sorted const &q, long long c, int split, CandidateSink &sink) noe
   int const k = split;
   // Rows (dy, dz) of the half stencil ((dz, dy, dx) > 0): (0, 0) holds the
   // cell itself and x + 1 .. x + k; (dy > 0, 0) and (-k..k, dz > 0) hold
-  // x - k .. x + k.
+  // x - k .. x + k. A periodic row wraps once at most (nx >= 2k + 1).
+  ScanRange ranges[kMaxRanges];
+  int nranges = 0;
   for (int dz = 0; dz <= k; ++dz)
     for (int dy = dz == 0 ? 0 : -k; dy <= k; ++dy) {
       long long yy = y + dy, zz = z + dz;
@@ -657,9 +747,9 @@ void scan_cell(Sorted const &q, long long c, int split, CandidateSink &sink) noe
       long long const base = nx * (yy + ny * zz);
       bool const own = dy == 0 && dz == 0;
       long long const lo = own ? x + 1 : x - k, hi = x + k;
-      // Up to three runs of consecutive cells [x0, x1] with their x wrap.
-      long long runs[3][2];
-      int wrap[3];
+      // Up to two runs of consecutive cells [x0, x1] with their x wrap.
+      long long runs[2][2];
+      int wrap[2];
       int nrun = 0;
       if (g.periodic) {
         if (lo < 0) { runs[nrun][0] = lo + nx; runs[nrun][1] = nx - 1; wrap[nrun++] = -1; }
@@ -671,23 +761,44 @@ void scan_cell(Sorted const &q, long long c, int split, CandidateSink &sink) noe
         if (a0 <= a1) { runs[nrun][0] = a0; runs[nrun][1] = a1; wrap[nrun++] = 0; }
       }
       for (int r = 0; r < nrun; ++r) {
-        double shift[3] = {0, 0, 0};
+        ScanRange &s = ranges[nranges];
+        s.b0 = start[base + runs[r][0]];
+        s.b1 = start[base + runs[r][1] + 1];
+        if (s.b0 == s.b1) continue;
+        s.shift[0] = s.shift[1] = s.shift[2] = 0;
         if (g.periodic) {
-          shift[0] = wrap[r] * box.length[0] + wy * box.xy_ly + wz * box.xz_lz;
-          shift[1] = wy * box.length[1] + wz * box.yz_lz;
-          shift[2] = wz * box.length[2];
+          s.shift[0] = wrap[r] * box.length[0] + wy * box.xy_ly + wz * box.xz_lz;
+          s.shift[1] = wy * box.length[1] + wz * box.yz_lz;
+          s.shift[2] = wz * box.length[2];
         }
-        long long const b0 = start[base + runs[r][0]], b1 = start[base + runs[r][1] + 1];
-        if (b0 == b1) continue;
-        for (long long a = start[c]; a < start[c + 1]; ++a) scan_range(q, a, b0, b1, shift, sink);
+        ++nranges;
       }
-      if (own) {
-        double const zero[3] = {0, 0, 0};
-        for (long long a = start[c]; a < start[c + 1]; ++a)
-          scan_range(q, a, a + 1, start[c + 1], zero, sink);
-      }
-      if (sink.status != kOk) return;
     }
+  for (long long a = start[c]; a < start[c + 1] && sink.status == kOk; ++a)
+    scan_particle(q, a, ranges, nranges, start[c + 1], sink);
+}
+
+// scan_cell_body for the CPU at hand: the x86-64-v3 variant (four lanes in
+// one AVX register) where the CPU has it, else the portable one; the same
+// operations, no contraction (-ffp-contract=off), so the same verdicts.
+#if PW85_ISA_LEVELS
+PW85_TARGET_V3 void scan_cell_v3(Sorted const &q, long long c, int split,
+                                 CandidateSink &sink) noexcept {
+  scan_cell_body(q, c, split, sink);
+}
+#endif
+void scan_cell_portable(Sorted const &q, long long c, int split, CandidateSink &sink) noexcept {
+  scan_cell_body(q, c, split, sink);
+}
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+using ScanCell = void (*)(Sorted const &, long long, int, CandidateSink &) noexcept;
+ScanCell scan_cell_for_cpu() noexcept {
+#if PW85_ISA_LEVELS
+  if (variant_runs(Variant::v3)) return scan_cell_v3;
+#endif
+  return scan_cell_portable;
 }
 
 // Cell c's pairs, general path (any grid): the neighbour cells of higher
@@ -700,11 +811,12 @@ void scan_cell_general(Sorted const &q, long long c, double rho, CandidateSink &
   long long const *start = q.start.data;
   for (long long a = start[c]; a < start[c + 1] && sink.status == kOk; ++a) {
     double const ra = q.rad.data[a];
-    for_each_neighbour_cell(g, cc, k, [&](long long c2) noexcept {
+    for_each_neighbour_cell(g, cc, k, [&](long long c2, int const *) noexcept {
       if (c2 < c) return;
       for (long long b = c2 == c ? a + 1 : start[c2]; b < start[c2 + 1]; ++b) {
         double d[3];
-        if (!pair_r12(g.box, q.centre.data + 3 * a, q.centre.data + 3 * b, d)) {
+        double const *centres = sink.scene.centres;
+        if (!pair_r12(g.box, centres + 3 * q.order.data[a], centres + 3 * q.order.data[b], d)) {
           sink.status = kInvalidArgument;
           return;
         }
@@ -766,6 +878,7 @@ Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacit
   Status status = kOk;
   long long spheres_total = 0, examined_total = 0;
   bool const want_mu2 = mu2_out != nullptr;
+  ScanCell const scan_cell = scan_cell_for_cpu();
   constexpr long long kBlock = 256;
 #pragma omp parallel num_threads(nt) if (nt > 1) reduction(+ : spheres_total, examined_total)
   {
@@ -861,53 +974,100 @@ Status check_trial(Scene const &scene, long long i, double const *centre, double
 
 }  // namespace
 
+namespace {
+
+// Screen of the object's grid queries: the image of particle b near the
+// point of wrapped centre w (shifted by the lattice vector of its cell's
+// wrap) lies at least reach + err from w, err the bound of the roundings of
+// the wrapped centres and of r12 (sort_by_cell's, for any accepted centre),
+// so the pair's exact r12 is at least reach long. wrap null (an axis
+// enumerated whole): no screen.
+inline bool image_apart(Scene const &scene, double const w[3], long long b, int const *wrap,
+                        double reach, double err) noexcept {
+  if (wrap == nullptr) return false;
+  double shift[3];
+  lattice_shift(scene.box, wrap, shift);
+  double const *wb = scene.wrapped + 3 * b;
+  double const d[3] = {wb[0] + shift[0] - w[0], wb[1] + shift[1] - w[1], wb[2] + shift[2] - w[2]};
+  double const limit = reach + err;
+  return d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= limit * limit * (1 + 2 * kMargin);
+}
+
+inline double screen_error(Box const &box) noexcept {
+  return box.periodic ? wrap_error_bound(box, kMaxFractional) : 0.0;
+}
+
+// The grid walk of test_move and neighbours: fn(b, r, reach(b)) for each
+// particle b != i in the cells within rho (the largest reach) of point x
+// whose image passes the screen, r the r12 of the pair (min(i, b),
+// max(i, b)) with x in i's place (pair_r12). Returns false where a minimum
+// image was refused.
+template <class Reach, class Fn>
+bool for_each_near(Scene const &scene, long long i, double const x[3], double rho, Reach reach,
+                   Fn fn) noexcept {
+  CellGrid const &g = scene.grid;
+  long long k[3], c[3];
+  for (int d = 0; d < 3; ++d) k[d] = stencil(g, d, rho);
+  cell_coords(g, x, c);
+  double w[3];
+  wrapped_centre(scene.box, x, w);
+  double const err = screen_error(scene.box);
+  bool refused = false;
+  for_each_neighbour_cell(g, c, k, [&](long long cell, int const *wrap) noexcept {
+    for (long long b = scene.head[cell]; b >= 0; b = scene.next[b]) {
+      if (b == i) continue;
+      double const rb = reach(b);
+      if (image_apart(scene, w, b, wrap, rb, err)) continue;
+      double r[3];
+      double const *cb = scene.centres + 3 * b;
+      if (!(i < b ? pair_r12(scene.box, x, cb, r) : pair_r12(scene.box, cb, x, r))) {
+        refused = true;
+        continue;
+      }
+      fn(b, r, rb);
+    }
+  });
+  return !refused;
+}
+
+}  // namespace
+
 Status scene_test_move(Scene const &scene, long long i, double const centre[3],
                        double const q[6], long long &j_found) noexcept {
   double rt;
   Status const s = check_trial(scene, i, centre, q, rt);
   if (s != kOk) return s;
-  CellGrid const &g = scene.grid;
-  double const rho = (rt + scene.radius_max) * (1 + 4 * kMargin);
-  long long k[3], c[3];
-  for (int d = 0; d < 3; ++d) k[d] = stencil(g, d, rho);
-  cell_coords(g, centre, c);
   // Candidates in ascending j, then the exact predicate in that order.
   constexpr int kLocal = 64;
   Candidate local[kLocal];
   Buffer<Candidate> heap;
   Candidate *cand = local;
   long long m = 0, cap = kLocal;
-  bool oom = false, refused = false;
-  for_each_neighbour_cell(g, c, k, [&](long long cell) noexcept {
-    for (long long b = scene.head[cell]; b >= 0; b = scene.next[b]) {
-      if (b == i || oom) continue;
-      double r[3];
-      double const *cb = scene.centres + 3 * b;
-      if (!(i < b ? pair_r12(scene.box, centre, cb, r) : pair_r12(scene.box, cb, centre, r))) {
-        refused = true;
-        continue;
-      }
-      if (spheres_apart(r, rt + scene.radius[b])) continue;
-      double const *qa = i < b ? q : scene.q + 6 * b;
-      double const *qb = i < b ? scene.q + 6 * b : q;
-      if (plane_separates(r, qa, qb, 0.0)) continue;
-      if (m == cap) {
-        if (!heap.reserve(2 * cap)) {
-          oom = true;
-          continue;
+  bool oom = false;
+  bool const walked = for_each_near(
+      scene, i, centre, (rt + scene.radius_max) * (1 + 4 * kMargin),
+      [&](long long b) noexcept { return rt + scene.radius[b]; },
+      [&](long long b, double const r[3], double reach) noexcept {
+        if (oom || spheres_apart(r, reach)) return;
+        double const *qa = i < b ? q : scene.q + 6 * b;
+        double const *qb = i < b ? scene.q + 6 * b : q;
+        if (plane_separates(r, qa, qb, 0.0)) return;
+        if (m == cap) {
+          if (!heap.reserve(2 * cap)) {
+            oom = true;
+            return;
+          }
+          if (cand == local) std::memcpy(heap.data, local, sizeof local);
+          cand = heap.data;
+          cap = heap.capacity;
         }
-        if (cand == local) std::memcpy(heap.data, local, sizeof local);
-        cand = heap.data;
-        cap = heap.capacity;
-      }
-      cand[m].i = b;  // the other particle
-      cand[m].j = b;
-      std::memcpy(cand[m].r, r, sizeof r);
-      ++m;
-    }
-  });
+        cand[m].i = b;  // the other particle
+        cand[m].j = b;
+        std::memcpy(cand[m].r, r, 3 * sizeof(double));
+        ++m;
+      });
   if (oom) return kNoMemory;
-  if (refused) return kInvalidArgument;
+  if (!walked) return kInvalidArgument;
   std::sort(cand, cand + m, [](Candidate const &x, Candidate const &y) { return x.j < y.j; });
   for (long long t = 0; t < m; ++t) {
     long long const b = cand[t].j;
@@ -925,6 +1085,30 @@ Status scene_test_move(Scene const &scene, long long i, double const centre[3],
   return kOk;
 }
 
+Status scene_neighbours(Scene const &scene, long long i, double distance, long long capacity,
+                        long long *j_out, long long &count) noexcept {
+  if (i < 0 || i >= scene.n || !(distance >= 0.0) || !std::isfinite(distance) || capacity < 0)
+    return kInvalidArgument;
+  if (scene.box.periodic && distance > scene.box.max_reach) return kInvalidArgument;
+  double const d2 = distance * distance;
+  Buffer<long long> found;
+  bool oom = false;
+  bool const walked = for_each_near(
+      scene, i, scene.centres + 3 * i, distance * (1 + 4 * kMargin),
+      [distance](long long) noexcept { return distance; },
+      [&](long long b, double const r[3], double) noexcept {
+        if (r[0] * r[0] + r[1] * r[1] + r[2] * r[2] < d2 && !found.push(b)) oom = true;
+      });
+  if (oom) return kNoMemory;
+  if (!walked) return kInvalidArgument;
+  std::sort(found.data, found.data + found.size);
+  count = found.size;
+  if (found.size > capacity) return kCapacity;
+  if (found.size > 0)
+    std::memcpy(j_out, found.data, static_cast<size_t>(found.size) * sizeof(long long));
+  return kOk;
+}
+
 Status scene_move(Scene &scene, long long i, double const centre[3], double const q[6]) noexcept {
   double rt;
   Status const s = check_trial(scene, i, centre, q, rt);
@@ -932,6 +1116,7 @@ Status scene_move(Scene &scene, long long i, double const centre[3], double cons
   std::memcpy(scene.centres + 3 * i, centre, 3 * sizeof(double));
   std::memcpy(scene.q + 6 * i, q, 6 * sizeof(double));
   scene.radius[i] = rt;
+  wrapped_centre(scene.box, centre, scene.wrapped + 3 * i);
   if (rt > scene.radius_max) scene.radius_max = rt;
   long long const cell = cell_of_point(scene.grid, centre);
   if (cell != scene.cell_of[i]) {

@@ -17,6 +17,7 @@ struct Scene {
   double *centres = nullptr;  // 3n, as given
   double *q = nullptr;        // 6n
   double *radius = nullptr;   // n, bounding-sphere radius rounded up
+  double *wrapped = nullptr;  // 3n, centres wrapped into the box (wrapped_centre)
   double radius_max = 0;      // >= every radius
   // Cell grid for test_move/move: doubly linked lists of the particles of
   // each cell.
@@ -52,6 +53,15 @@ Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacit
 // or -1.
 Status scene_test_move(Scene const &scene, long long i, double const centre[3],
                        double const q[6], long long &j) noexcept;
+
+// The particles j != i whose centre lies closer than distance to particle
+// i's: r . r < distance^2, r = c_j - c_i taken for the pair (min(i, j),
+// max(i, j)) with its image as scene_pairs takes it; ascending j. count
+// receives their number; when count <= capacity, j_out receives them, else
+// nothing is written and kCapacity is returned. distance finite, >= 0 and,
+// in a box, at most box.max_reach.
+Status scene_neighbours(Scene const &scene, long long i, double distance, long long capacity,
+                        long long *j_out, long long &count) noexcept;
 
 // Moves particle i to (centre, q) (no overlap test); on error nothing changes.
 Status scene_move(Scene &scene, long long i, double const centre[3], double const q[6]) noexcept;

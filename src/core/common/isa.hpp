@@ -1,6 +1,6 @@
 // Helpers for kernel bodies: forced inlining and opaque values. The
 // instruction-set variants and their target attributes are in
-// dispatch/variant.hpp; the CPU is probed only in dispatch/dispatch.cpp.
+// dispatch/variant.hpp.
 #pragma once
 
 #include <type_traits>
@@ -14,19 +14,6 @@
 #include "dispatch/variant.hpp"
 
 namespace pw85 {
-namespace isa {
-
-// The CPU queries of the kernels that do not read dispatch/kernels.hpp yet.
-constexpr bool kStaticFma = pw85::kStaticFma;
-#if PW85_ISA_FMA
-inline bool has_fma() noexcept { return __builtin_cpu_supports("fma"); }
-#endif
-#if PW85_ISA_LEVELS
-inline bool has_v3() noexcept { return __builtin_cpu_supports("x86-64-v3"); }
-inline bool has_v4() noexcept { return __builtin_cpu_supports("x86-64-v4"); }
-#endif
-
-}  // namespace isa
 
 // Makes x opaque to the optimiser (it must be materialised, and may have
 // changed): a combined condition such as (a > b) & (c > d) is then tested by

@@ -1,12 +1,16 @@
 // Vectors of doubles (GCC vector extensions) and their lane-by-lane
 // helpers, for the loops that process several pairs at once
-// (overlap/filters.hpp, contact/default_lanes.cpp; docs/batch.md,
+// (overlap/filters.hpp, contact/default.hpp; docs/batch.md,
 // "Throughput"). No operation mixes lanes.
 #pragma once
 
 #include <cmath>
 
 #include "common/isa.hpp"
+
+#if PW85_ISA_LEVELS
+#include <immintrin.h>
+#endif
 
 // Every function taking or returning a vector is always inline into the
 // instruction-set variants of its callers (no vector crosses a call), so
@@ -30,7 +34,6 @@ using VecD = typename Width<W>::type;
 
 // The width of the lane loops that do not choose one per instruction set.
 constexpr int kLanes = 4;
-typedef VecD<kLanes> V;
 
 constexpr long long kSign = static_cast<long long>(0x8000000000000000ULL);
 
@@ -45,7 +48,6 @@ template <class T>
 using MaskOf = decltype(T{} < T{});
 template <int W>
 using MaskD = MaskOf<VecD<W>>;
-typedef MaskD<kLanes> M;
 
 // The unsigned mask type of a vector type: 0 or ~0 per lane.
 template <int W>
@@ -65,7 +67,8 @@ using UMaskOf = typename UMaskWidth<width<T>()>::type;
 // setcc, insertions). Converted to the unsigned mask type, a comparison is
 // not folded so and compiles to vcmppd into a mask register and a masked
 // move (pw85_overlap_pairs on x86-64-v4, against the signed masks and vmax
-// below as a select: build/bench/bench_batch --reps 7).
+// below as a select: build/bench/bench_batch --reps 7). Code that may be
+// inlined into an x86-64-v4 function combines comparisons with these.
 #define PW85_LANES_COMPARISON(name, op)                                          \
   template <class T>                                                             \
   PW85_ALWAYS_INLINE UMaskOf<T> name(T x, T y) noexcept {                        \
@@ -120,6 +123,16 @@ PW85_ALWAYS_INLINE bool any(K m) noexcept {
   return a != 0;
 }
 
+// The mask with every lane set, and the negation of a mask (0 or -1 per
+// lane; for one pair, K = bool: true and !m).
+template <class K>
+PW85_ALWAYS_INLINE K all_set() noexcept { return ~K{}; }
+template <>
+PW85_ALWAYS_INLINE bool all_set<bool>() noexcept { return true; }
+template <class K>
+PW85_ALWAYS_INLINE K mask_not(K m) noexcept { return ~m; }
+PW85_ALWAYS_INLINE bool mask_not(bool m) noexcept { return !m; }
+
 // out[i][l] = p[l][i] for i < N, l < W: N doubles at each of W pointers,
 // element i of pair l in lane l of out[i]. For W = 8, elements 4k ... 4k + 3
 // are loaded as one 256-bit vector per pair and those pairs of elements
@@ -171,12 +184,70 @@ PW85_ALWAYS_INLINE void gather(double const *const p[W], VecD<W> out[N]) noexcep
     for (int l = 0; l < W; ++l) out[i][l] = p[l][i];
 }
 
+#if PW85_ISA_LEVELS
+// Eight lanes on x86-64-v4: the operations GCC's vector extensions do not
+// spell, for code inlined into PW85_TARGET_V4 functions (the only place of
+// the library's AVX-512 intrinsics besides derivatives/adjugate.hpp).
+typedef VecD<8> Lanes8;
+typedef long long LaneIndex8 __attribute__((vector_size(64)));
+typedef unsigned char LaneBits8;  // bit l: lane l
+
+// a b + c and a b - c, each with one rounding.
+PW85_V4_INLINE Lanes8 fma(Lanes8 a, Lanes8 b, Lanes8 c) noexcept {
+  return _mm512_fmadd_pd(a, b, c);
+}
+PW85_V4_INLINE Lanes8 fms(Lanes8 a, Lanes8 b, Lanes8 c) noexcept {
+  return _mm512_fmsub_pd(a, b, c);
+}
+// Lane l of the result: lane idx[l] of (a, b), 0-7 from a, 8-15 from b.
+PW85_V4_INLINE Lanes8 permute(Lanes8 a, LaneIndex8 idx, Lanes8 b) noexcept {
+  return _mm512_permutex2var_pd(a, reinterpret_cast<__m512i>(idx), b);
+}
+// Comparisons as bits (one compare into a mask register).
+PW85_V4_INLINE LaneBits8 gt_bits(Lanes8 a, Lanes8 b) noexcept {
+  return _mm512_cmp_pd_mask(a, b, _CMP_GT_OQ);
+}
+PW85_V4_INLINE LaneBits8 le_bits(Lanes8 a, Lanes8 b) noexcept {
+  return _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ);
+}
+// The lanes of a mask as bits, and back.
+PW85_V4_INLINE LaneBits8 bits(UMaskOf<Lanes8> m) noexcept {
+  return _mm512_movepi64_mask(reinterpret_cast<__m512i>(m));
+}
+PW85_V4_INLINE LaneBits8 bits(MaskD<8> m) noexcept {
+  return _mm512_movepi64_mask(reinterpret_cast<__m512i>(m));
+}
+PW85_V4_INLINE MaskD<8> mask_of(LaneBits8 k) noexcept {
+  return reinterpret_cast<MaskD<8>>(_mm512_movm_epi64(k));
+}
+// k ? a : b lane by lane, k as bits.
+PW85_V4_INLINE Lanes8 blend(LaneBits8 k, Lanes8 a, Lanes8 b) noexcept {
+  return _mm512_mask_blend_pd(k, b, a);
+}
+PW85_V4_INLINE LaneIndex8 blend(LaneBits8 k, LaneIndex8 a, LaneIndex8 b) noexcept {
+  return reinterpret_cast<LaneIndex8>(
+      _mm512_mask_blend_epi64(k, reinterpret_cast<__m512i>(b), reinterpret_cast<__m512i>(a)));
+}
+// The first n doubles at p in lanes 0 .. n - 1, zeros above (reads n only).
+PW85_V4_INLINE Lanes8 load_first(double const *p, int n) noexcept {
+  return _mm512_maskz_loadu_pd(static_cast<__mmask8>((1u << n) - 1u), p);
+}
+PW85_V4_INLINE void store(double *p, Lanes8 v) noexcept { _mm512_storeu_pd(p, v); }
+PW85_V4_INLINE Lanes8 load(double const *p) noexcept { return _mm512_loadu_pd(p); }
+PW85_V4_INLINE Lanes8 broadcast(double x) noexcept { return _mm512_set1_pd(x); }
+PW85_V4_INLINE LaneIndex8 broadcast_index(long long i) noexcept {
+  return reinterpret_cast<LaneIndex8>(_mm512_set1_epi64(i));
+}
+PW85_V4_INLINE double lane0(Lanes8 v) noexcept { return _mm512_cvtsd_f64(v); }
+#endif
+
 // The same helpers for one pair (T = double), so that code templated on the
 // vector type (eval/f_rational_dd.hpp, contact/rational_step.hpp,
 // contact/start.hpp, eval/f_adj.hpp) serves the one-pair path too.
 PW85_ALWAYS_INLINE double vabs(double x) noexcept { return std::fabs(x); }
 PW85_ALWAYS_INLINE double vsqrt(double x) noexcept { return std::sqrt(x); }
 PW85_ALWAYS_INLINE double select(bool m, double a, double b) noexcept { return m ? a : b; }
+PW85_ALWAYS_INLINE double copysign(double x, double y) noexcept { return std::copysign(x, y); }
 PW85_ALWAYS_INLINE bool finite(double x) noexcept { return std::isfinite(x); }
 PW85_ALWAYS_INLINE bool any(bool m) noexcept { return m; }
 PW85_ALWAYS_INLINE bool lt(double x, double y) noexcept { return x < y; }

@@ -128,13 +128,10 @@ constexpr OrientationKernels kOrientation_fma = {quat_fma};
 
 }  // namespace
 
-OrientationKernels const *orientation_kernels_for(Variant v) noexcept {
-#if PW85_ISA_FMA
-  if (v != Variant::portable) return &kOrientation_fma;
-#endif
-  (void)v;
-  return &kOrientation_portable;
-}
+const OrientationKernels orientation_kernels[kVariantCount] = {
+    kOrientation_portable, PW85_IF_FMA(kOrientation_fma, kOrientation_portable),
+    PW85_IF_FMA(kOrientation_fma, kOrientation_portable),
+    PW85_IF_FMA(kOrientation_fma, kOrientation_portable)};
 
 Status ellipsoid_quat(Vec3 const &radii, double const quat[4], Sym3 &q) noexcept {
   return kernels().orientation->ellipsoid_quat(radii, quat, q);

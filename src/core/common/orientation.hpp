@@ -38,6 +38,6 @@ Status ellipsoid_axes(Sym3 const &q, Vec3 &radii, double rot[9], double quat[4])
 struct OrientationKernels {
   Status (*ellipsoid_quat)(Vec3 const &radii, double const quat[4], Sym3 &q) noexcept;
 };
-OrientationKernels const *orientation_kernels_for(Variant v) noexcept;
+extern const OrientationKernels orientation_kernels[kVariantCount];
 
 }  // namespace pw85

@@ -84,7 +84,7 @@ Status contact_method_in_range(int method, Vec3 const &r, Sym3 const &q1, Sym3 c
 // Entry of pw85_contact_function_method (contact/methods.cpp) for non-null
 // pointers whose values are not yet checked: one screening pass recognises
 // valid arguments of moderate magnitude (nearly all calls) and sends them to
-// contact_method_in_range (DEFAULT on x86-64-v4: to contact_default_v4);
+// contact_method_in_range (DEFAULT: to the table of kernels, default_variants.hpp);
 // the others are validated, then go to contact_method. Returns as
 // contact_method, plus kInvalidArgument (NaN or infinite value) and kNotSpd
 // (res not written for these two).
@@ -94,25 +94,11 @@ Status contact_method_entry(double const *r12, double const *q1, double const *q
 // The methods themselves (one source file each). Preconditions: r != 0,
 // moderate magnitudes (see contact_method).
 Status contact_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                       MethodResult &res) noexcept;      // default.cpp
-#if PW85_ISA_LEVELS
-// contact_default's x86-64-v4 variant (default.cpp), for callers that have
-// checked the CPU (contact_method_entry's v4 variant); also sets
-// res.method.
-Status contact_default_v4(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                          MethodResult &res) noexcept;
-#endif
-#if PW85_ISA_LEVELS
-// DEFAULT's general method alone on x86-64-v4 (default.cpp): what
-// contact_default_v4 returns for a pair whose rational step declines (for
-// rational_lanes.cpp, which has run that step); also sets res.method.
-Status contact_default_general_v4(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                  MethodResult &res) noexcept;
-#endif
+                       MethodResult &res) noexcept;      // default.hpp
 // DEFAULT for kDefaultLanes pairs at once, pair l = (r[l], q1[l], q2[l])
-// (docs/batch.md, "Throughput"): on x86-64-v4 the rational step in eight
-// lanes (rational_lanes.cpp), elsewhere the common path of contact_default
-// in two times four lanes (default_lanes.cpp). status[l] != kLaneUndecided:
+// (docs/batch.md, "Throughput"): on x86-64-v4 the coefficient step in eight
+// lanes (default.hpp, coefficient_step_lanes), elsewhere the common path of contact_default
+// in two times four lanes (default.hpp, first_step_lanes). status[l] != kLaneUndecided:
 // res[l] and status[l] are what pw85_contact_function_method(..., DEFAULT,
 // ...) gives, bit for bit; kLaneUndecided: res[l] is meaningless and the
 // caller makes the one-pair call. Any values are accepted (read unchecked:
@@ -122,13 +108,6 @@ constexpr int kLaneUndecided = 1;  // not a Status (status.hpp)
 void default_lanes(double const *const r[kDefaultLanes], double const *const q1[kDefaultLanes],
                    double const *const q2[kDefaultLanes], MethodResult res[kDefaultLanes],
                    int status[kDefaultLanes]) noexcept;
-#if PW85_ISA_LEVELS
-// default_lanes on x86-64-v4 (rational_lanes.cpp).
-void rational_lanes_v4(double const *const r[kDefaultLanes],
-                       double const *const q1[kDefaultLanes],
-                       double const *const q2[kDefaultLanes], MethodResult res[kDefaultLanes],
-                       int status[kDefaultLanes]) noexcept;
-#endif
 
 Status contact_newton(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                       MethodResult &res) noexcept;       // newton.cpp

@@ -1,5 +1,5 @@
 // Parameters of step 1 of PW85_METHOD_DEFAULT (docs/methods.md), shared by
-// the one-pair code (default.cpp) and the vector lanes (default_lanes.cpp),
+// the one-pair code and the vector lanes (default.hpp, first_step),
 // which must take the same decisions.
 #pragma once
 

@@ -16,6 +16,7 @@
 #include "contact/newton.hpp"
 #include "common/screen.hpp"
 #include "common/scaling.hpp"
+#include "dispatch/kernels.hpp"
 
 namespace pw85 {
 
@@ -58,7 +59,7 @@ Status contact_brent_checked(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   return res.mu2_error <= kBrentRelAccuracy * res.mu2 ? kOk : kInaccurate;
 }
 
-// ZHENG (dca/dca_3d.cpp) with the same independent check as BRENT: its own
+// ZHENG (zheng.cpp) with the same independent check as BRENT: its own
 // estimate (D13) compares mu2 with a double f at its lambda, which can agree
 // with it while both are wrong when Q(lambda) is ill-conditioned.
 Status contact_zheng_checked(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
@@ -173,11 +174,11 @@ PW85_ALWAYS_INLINE Status checked(Status s, Vec3 const &r, Sym3 const &q1, Sym3 
 using MethodFunction = Status (*)(Vec3 const &, Sym3 const &, Sym3 const &,
                                   MethodResult &) noexcept;
 constexpr MethodFunction kMethods[] = {
-    contact_default,        // kMethodDefault: default.cpp
+    contact_default,        // kMethodDefault: default.hpp, default_variants.cpp
     contact_brent_checked,  // kMethodBrent: brent.cpp
     contact_newton,         // kMethodNewton: newton.cpp
     contact_rational,       // kMethodRational: rational.cpp
-    contact_zheng_checked,  // kMethodZheng: dca/dca_3d.cpp
+    contact_zheng_checked,  // kMethodZheng: zheng.cpp
 };
 static_assert(sizeof kMethods / sizeof kMethods[0] == kMethodCount,
               "one row of kMethods per Method");
@@ -245,47 +246,24 @@ Status contact_method(int method, Vec3 const &r_in, Sym3 const &q1_in, Sym3 cons
   return s;
 }
 
-namespace {
-
 // Checks in the order of the general path: finite values (kInvalidArgument),
 // then positive definiteness (kNotSpd; common/spd.hpp), then the method.
-template <bool kV4>
-PW85_ALWAYS_INLINE Status entry_body(double const *r12, double const *q1, double const *q2,
-                                     int method, MethodResult &res) noexcept {
+// DEFAULT from the table of kernels (default_variants.hpp) directly.
+Status contact_method_entry(double const *r12, double const *q1, double const *q2, int method,
+                            MethodResult &res) noexcept {
   if (is_method(method) && screen_contact_pair(r12, q1, q2, kSafeLo, kSafeHi)) {
-#if PW85_ISA_LEVELS
-    if (kV4 && method == kMethodDefault)
-      return checked(contact_default_v4(view_vec3(r12), view_sym3(q1), view_sym3(q2), res),
+    if (method == kMethodDefault) {
+      res.iterations = 0;
+      return checked(kernels().contact_default->contact(view_vec3(r12), view_sym3(q1),
+                                                        view_sym3(q2), res),
                      view_vec3(r12), view_sym3(q1), view_sym3(q2), res);
-#endif
+    }
     return contact_method_in_range(method, view_vec3(r12), view_sym3(q1), view_sym3(q2), res);
   }
   if (!all_finite(r12, kDim) || !all_finite(q1, kSym) || !all_finite(q2, kSym))
     return kInvalidArgument;
   if (!positive_definite(q1) || !positive_definite(q2)) return kNotSpd;
   return contact_method(method, load_vec3(r12), load_sym3(q1), load_sym3(q2), res);
-}
-
-#if PW85_ISA_LEVELS
-// The entry compiled for x86-64-v4 as well, calling DEFAULT's v4 variant
-// directly (no table, no second CPU check). Measured with bench_contact
-// against the same code without this variant: 8-13 ns per DEFAULT call
-// faster together with contact_default_v4 (neither alone measured faster);
-// identical results (-ffp-contract=off, src/meson.build).
-PW85_TARGET_V4 Status entry_v4(double const *r12, double const *q1, double const *q2,
-                               int method, MethodResult &res) noexcept {
-  return entry_body<true>(r12, q1, q2, method, res);
-}
-#endif
-
-}  // namespace
-
-Status contact_method_entry(double const *r12, double const *q1, double const *q2, int method,
-                            MethodResult &res) noexcept {
-#if PW85_ISA_LEVELS
-  if (isa::has_v4()) return entry_v4(r12, q1, q2, method, res);
-#endif
-  return entry_body<false>(r12, q1, q2, method, res);
 }
 
 }  // namespace pw85

@@ -1,4 +1,4 @@
-// Internals of newton.cpp shared with default.cpp and methods.cpp.
+// Internals of newton.cpp shared with default.hpp and methods.cpp.
 #pragma once
 
 #include "eval/f_ldl.hpp"

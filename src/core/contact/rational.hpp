@@ -1,4 +1,4 @@
-// Internals of rational.cpp shared with default.cpp: the coefficients of the
+// Internals of rational.cpp shared with default.hpp: the coefficients of the
 // rational form of f and the maximisation of that form (docs/methods.md,
 // eqs. (M12)-(M15)).
 #pragma once

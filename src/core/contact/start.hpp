@@ -1,6 +1,6 @@
 // Starting points of the iterations (docs/methods.md, eqs. (M7), (M19), (M20),
 // (M22)), inline so that the instruction-set variants of DEFAULT
-// (default.cpp) compile them for their level. (M22) is DEFAULT's start;
+// (default.hpp) compile them for their level. (M22) is DEFAULT's start;
 // (M19)-(M20) are NEWTON's and RATIONAL's.
 #pragma once
 
@@ -13,12 +13,17 @@
 namespace pw85 {
 
 // Eq. (M7): lambda0 = h1 / (h1 + h2), h_i = (r^T Q_i r)^(1/2); the fallback
-// of fixed_point_start.
-inline double newton_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
-  double const h1 = std::sqrt(dot(r, multiply(q1, r)));
-  double const h2 = std::sqrt(dot(r, multiply(q2, r)));
-  double const l0 = h1 / (h1 + h2);
-  return (l0 > 0.0 && l0 < 1.0) ? l0 : 0.5;
+// of fixed_point_start and of the iteration of (M22). One pair (Vec3, Sym3)
+// or one pair per lane (start_lanes.hpp: Vec3L, SymL).
+template <class Vc, class Sy>
+PW85_ALWAYS_INLINE auto newton_start(Vc const &r, Sy const &q1, Sy const &q2) noexcept {
+  using lanes::vsqrt;
+  typedef decltype(dot(r, r)) Lane;
+  Lane const h1 = vsqrt(dot(r, multiply(q1, r)));
+  Lane const h2 = vsqrt(dot(r, multiply(q2, r)));
+  Lane const l0 = h1 / (h1 + h2);
+  lanes::MaskOf<Lane> const in = (l0 > 0.0) & (l0 < 1.0);
+  return lanes::select(in, l0, Lane{} + 0.5);
 }
 
 namespace detail {
@@ -89,8 +94,8 @@ PW85_ALWAYS_INLINE double fixed_point_start(Vec3 const &r, Sym3 const &q1, Sym3 
     // the others), a_i <= ~2^420, and a_i >= ~2^-460 for eigenvalue ratios
     // up to 2^40, so a1 a2 stays a normal double. Beyond, an overflow makes
     // lambda NaN ((M7) below) and an underflow gives a worse start, never a
-    // wrong result. sqrt(a1) sqrt(a2) would avoid both; it measured ~2 %
-    // slower in bench_contact (one more square root per step).
+    // wrong result. sqrt(a1) sqrt(a2) would avoid both, at one more square
+    // root per step on the chain (slower: build/bench/bench_contact).
     double const g = std::sqrt(a1 * a2), scale = 1.0 / (a1 + a2);
     lam[k - 1] = a1 / (a1 + g);  // h1 / (h1 + h2), off the chain
     double const c1 = a2 * scale, cm = g * scale, c2 = a1 * scale;
@@ -199,49 +204,63 @@ PW85_ALWAYS_INLINE void start_quartics(Vc const &r, Sy const &q1, Sy const &q2,
 // Clamp of |delta| in the iteration of (M22) (above).
 constexpr double kLogNewtonClamp = 1.6;
 
-// The Newton iteration of (M22) from sq.x0 (start_quartics).
-template <int kMin, int kMax>
-PW85_ALWAYS_INLINE double log_newton_iterate(StartQuartics const &sq, double tol,
-                                             Vec3 const &r, Sym3 const &q1,
-                                             Sym3 const &q2) noexcept {
+// The Newton iteration of (M22) from sq.x0 (start_quartics), for one pair
+// (V = double) or one pair per lane: a lane stops at its own step; the loop
+// runs until every lane has stopped.
+template <int kMin, int kMax, class V, class Vc, class Sy>
+PW85_ALWAYS_INLINE V log_newton_iterate(StartQuarticsOf<V> const &sq, double tol, Vc const &r,
+                                        Sy const &q1, Sy const &q2) noexcept {
   static_assert(1 <= kMin && kMin <= kMax, "step counts");
+  using lanes::select;
+  using lanes::vabs;
+  typedef lanes::MaskOf<V> Mask;
   constexpr double kClamp = kLogNewtonClamp;
-  double const a10 = sq.a1[0], a11 = sq.a1[1], a12 = sq.a1[2], a13 = sq.a1[3], a14 = sq.a1[4];
-  double const a20 = sq.a2[0], a21 = sq.a2[1], a22 = sq.a2[2], a23 = sq.a2[3], a24 = sq.a2[4];
-  double x = sq.x0;
+  V const a10 = sq.a1[0], a11 = sq.a1[1], a12 = sq.a1[2], a13 = sq.a1[3], a14 = sq.a1[4];
+  V const a20 = sq.a2[0], a21 = sq.a2[1], a22 = sq.a2[2], a23 = sq.a2[3], a24 = sq.a2[4];
+  V x = sq.x0;
   // Coefficients of the derivatives a_i'.
-  double const b12 = 2.0 * a12, b13 = 3.0 * a13, b14 = 4.0 * a14;
-  double const b22 = 2.0 * a22, b23 = 3.0 * a23, b24 = 4.0 * a24;
+  V const b12 = 2.0 * a12, b13 = 3.0 * a13, b14 = 4.0 * a14;
+  V const b22 = 2.0 * a22, b23 = 3.0 * a23, b24 = 4.0 * a24;
+  V out{};
+  Mask done{};
   for (int k = 1;; ++k) {
     // Estrin's scheme (short dependency chains).
-    double const x2 = x * x;
-    double const a1 = (a10 + a11 * x) + x2 * ((a12 + a13 * x) + x2 * a14);
-    double const a2 = (a20 + a21 * x) + x2 * ((a22 + a23 * x) + x2 * a24);
-    double const d1 = (a11 + b12 * x) + x2 * (b13 + b14 * x);
-    double const d2 = (a21 + b22 * x) + x2 * (b23 + b24 * x);
-    double const b = x2 * a2;
-    double n = a1 - b, dd = a1 + b;  // tanh(log(rho) / 2) = n / dd
-    double const w = 2.0 * (a1 * a2);
-    double const g = w - x * (d1 * a2 - d2 * a1);  // (1 - G') w
-    if (g > 0.0) {
-      n = n * w;  // delta = n / dd
-      dd = dd * g;
-    }
-    double const lim = kClamp * dd;
-    double const nc = std::fabs(n) > lim ? std::copysign(lim, n) : n;
-    double const num = x * (2.0 * dd + nc), den = 2.0 * dd - nc;
-    if (k >= kMax || (k >= kMin && std::fabs(n) <= tol * dd)) {
-      double const l = num / (den + num);
-      return l > 0.0 && l < 1.0 ? l : newton_start(r, q1, q2);
+    V const x2 = x * x;
+    V const a1 = (a10 + a11 * x) + x2 * ((a12 + a13 * x) + x2 * a14);
+    V const a2 = (a20 + a21 * x) + x2 * ((a22 + a23 * x) + x2 * a24);
+    V const d1 = (a11 + b12 * x) + x2 * (b13 + b14 * x);
+    V const d2 = (a21 + b22 * x) + x2 * (b23 + b24 * x);
+    V const b = x2 * a2;
+    V n = a1 - b, dd = a1 + b;  // tanh(log(rho) / 2) = n / dd
+    V const w = 2.0 * (a1 * a2);
+    V const g = w - x * (d1 * a2 - d2 * a1);  // (1 - G') w
+    Mask const gp = g > 0.0;
+    n = select(gp, n * w, n);  // delta = n / dd
+    dd = select(gp, dd * g, dd);
+    V const lim = kClamp * dd;
+    V const nc = select(vabs(n) > lim, lanes::copysign(lim, n), n);
+    V const num = x * (2.0 * dd + nc), den = 2.0 * dd - nc;
+    Mask stop = k >= kMin ? Mask(vabs(n) <= tol * dd) : Mask{};
+    if (k >= kMax) stop = lanes::all_set<Mask>();
+    stop &= lanes::mask_not(done);
+    if (lanes::any(stop)) {
+      V const l = num / (den + num);
+      out = select(stop, l, out);
+      done |= stop;
+      if (k >= kMax || !lanes::any(lanes::mask_not(done))) break;
     }
     x = num / den;
   }
+  Mask const in = (out > 0.0) & (out < 1.0);
+  if (lanes::any(lanes::mask_not(in))) out = select(in, out, newton_start(r, q1, q2));
+  return out;
 }
 
-template <int kMin, int kMax>
-PW85_ALWAYS_INLINE double log_newton_start(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                           double tol) noexcept {
-  StartQuartics sq;
+// DEFAULT's start (M22) for one pair or one pair per lane.
+template <int kMin, int kMax, class Vc, class Sy>
+PW85_ALWAYS_INLINE auto log_newton_start(Vc const &r, Sy const &q1, Sy const &q2,
+                                         double tol) noexcept {
+  StartQuarticsOf<decltype(dot(r, r))> sq;
   start_quartics(r, q1, q2, sq);
   return log_newton_iterate<kMin, kMax>(sq, tol, r, q1, q2);
 }

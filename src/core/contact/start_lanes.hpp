@@ -1,6 +1,6 @@
 // The Sym3 / Vec3 algebra of sym3.hpp for W pairs at once, pair l in lane l
-// of each vector (contact/default_lanes.cpp: W = 4;
-// contact/rational_lanes.cpp: W = 8), with which start.hpp's
+// of each vector (contact/default.hpp, first_step_lanes: W = 4;
+// contact/default.hpp, coefficient_step_lanes: W = 8), with which start.hpp's
 // start_quartics computes the quartics of DEFAULT's start (M22) for those
 // pairs. Every lane performs the scalar operations of the one-pair code in
 // the same order (the including files are compiled without contraction,
@@ -55,16 +55,6 @@ PW85_ALWAYS_INLINE SymL<W> interpolate(SymL<W> const &q1, SymL<W> const &q2,
   VecD<W> const one_minus = 1.0 - lambda;
   for (int i = 0; i < kSym; ++i) q[i] = one_minus * q1[i] + lambda * q2[i];
   return q;
-}
-
-// start.hpp: newton_start.
-template <int W>
-PW85_ALWAYS_INLINE VecD<W> newton_start(Vec3L<W> const &r, SymL<W> const &q1,
-                                        SymL<W> const &q2) noexcept {
-  VecD<W> const h1 = vsqrt(dot(r, multiply(q1, r)));
-  VecD<W> const h2 = vsqrt(dot(r, multiply(q2, r)));
-  VecD<W> const l0 = h1 / (h1 + h2);
-  return select((l0 > 0.0) & (l0 < 1.0), l0, VecD<W>{} + 0.5);
 }
 
 }  // namespace lanes

@@ -1,6 +1,6 @@
 // DEFAULT's start on x86-64-v4 (docs/methods.md, eq. (M24)), in place of the
-// Newton iteration of (M22) on the rational step's path (default.cpp,
-// rational_v4). lambda* is the root of a1(x) = x^2 a2(x), x = lambda /
+// Newton iteration of (M22) on the coefficient step's path (default.hpp,
+// coefficient_step). lambda* is the root of a1(x) = x^2 a2(x), x = lambda /
 // (1 - lambda), with the quartics a_i of (M22) (start.hpp); in t = log x,
 // y(t) = (a1 - x^2 a2) / (a1 + x^2 a2) = tanh((log a1 - log a2) / 2 - t)
 // is positive below the root and negative above it. The root is located
@@ -10,8 +10,7 @@
 //  2. on 16 points (step h / 15) from coarse point k - 1 to coarse point k
 //     of that interval, the same way;
 //  3. by linear interpolation of y in t between the two points that bracket
-//     it (the error is second order in the step; on bench_contact's pairs,
-//     p99 6.9e-5 / 3.2e-4 / 4.0e-4 in t in classes 0-2, docs/methods.md).
+//     it (the error is second order in the step, docs/methods.md).
 // Each grid is evaluated in AVX-512 vectors, a1 - x^2 a2 and a1 + x^2 a2
 // as sextics (Estrin's scheme): no division, no branch per point, and a
 // dependency chain of two polynomial evaluations instead of one Newton
@@ -19,44 +18,44 @@
 // registers by permutes. A root outside the coarse grid returns -1
 // (the caller then runs (M22)). The quartics are used unscaled (the scaling
 // of (M22) protects its products of three a_i; here none is formed). Only
-// the start depends on this; the rational step that follows certifies its
+// the start depends on this; the coefficient step that follows certifies its
 // own result.
 #pragma once
 
 #include "contact/start.hpp"
 
 #if PW85_ISA_LEVELS
-#include <immintrin.h>
 
 namespace pw85 {
 
 namespace scan {
 
-PW85_V4_INLINE __m512d bc(double v) { return _mm512_set1_pd(v); }
+using lanes::Lanes8;
+using lanes::LaneIndex8;
 
 // The sextic sum_n c_n x^n, lane by lane (Estrin's scheme: four levels of
 // FMA after x): at eight points x for one pair (the c_n broadcast,
 // scan_start), or at one point x (broadcast) for one pair per lane
-// (contact/rational_lanes.cpp), the same IEEE operations in each lane.
-PW85_V4_INLINE __m512d sextic(__m512d const c[7], __m512d x) {
-  __m512d const x2 = _mm512_mul_pd(x, x), x4 = _mm512_mul_pd(x2, x2);
-  __m512d const lo = _mm512_fmadd_pd(x2, _mm512_fmadd_pd(x, c[3], c[2]),
-                                     _mm512_fmadd_pd(x, c[1], c[0]));
-  __m512d const hi = _mm512_fmadd_pd(x2, c[6], _mm512_fmadd_pd(x, c[5], c[4]));
-  return _mm512_fmadd_pd(x4, hi, lo);
+// (contact/default.hpp, coefficient_step_lanes), the same IEEE operations in each lane.
+PW85_V4_INLINE Lanes8 sextic(Lanes8 const c[7], Lanes8 x) {
+  using lanes::fma;
+  Lanes8 const x2 = x * x, x4 = x2 * x2;
+  Lanes8 const lo = fma(x2, fma(x, c[3], c[2]), fma(x, c[1], c[0]));
+  Lanes8 const hi = fma(x2, c[6], fma(x, c[5], c[4]));
+  return fma(x4, hi, lo);
 }
 
-PW85_V4_INLINE unsigned positive_mask(__m512d v) {
-  return (unsigned)_mm512_cmp_pd_mask(v, _mm512_setzero_pd(), _CMP_GT_OQ);
+PW85_V4_INLINE unsigned positive_mask(Lanes8 v) {
+  return lanes::gt_bits(v, Lanes8{});
 }
 
 // Index of the first lane (0-15, or 0-31) whose value is not positive (16,
 // or 32, when all are).
-PW85_V4_INLINE unsigned first_nonpositive16(__m512d v0, __m512d v1) {
+PW85_V4_INLINE unsigned first_nonpositive16(Lanes8 v0, Lanes8 v1) {
   unsigned const pos = positive_mask(v0) | (positive_mask(v1) << 8);
   return (unsigned)__builtin_ctz(~pos);  // ~pos has bit 16 and up set
 }
-PW85_V4_INLINE unsigned first_nonpositive(__m512d v0, __m512d v1, __m512d v2, __m512d v3) {
+PW85_V4_INLINE unsigned first_nonpositive(Lanes8 v0, Lanes8 v1, Lanes8 v2, Lanes8 v3) {
   unsigned long long const pos = (unsigned long long)(positive_mask(v0) | (positive_mask(v1) << 8) |
                                                       (positive_mask(v2) << 16) |
                                                       (positive_mask(v3) << 24));
@@ -135,20 +134,20 @@ PW85_V4_INLINE double scan_start(
   start_quartics<false>(r, q1, q2, sq);
   double pn_s[7], pdn_s[7];
   scan_sextics(sq, pn_s, pdn_s);
-  __m512d pn[7], pdn[7];
+  scan::Lanes8 pn[7], pdn[7];
   for (int i = 0; i < 7; ++i) {
-    pn[i] = scan::bc(pn_s[i]);
-    pdn[i] = scan::bc(pdn_s[i]);
+    pn[i] = lanes::broadcast(pn_s[i]);
+    pdn[i] = lanes::broadcast(pdn_s[i]);
   }
-  __m512d c_num[4];
-  for (int v = 0; v < 4; ++v) c_num[v] = scan::sextic(pn, _mm512_load_pd(kScanCoarse + 8 * v));
+  scan::Lanes8 c_num[4];
+  for (int v = 0; v < 4; ++v) c_num[v] = scan::sextic(pn, lanes::load(kScanCoarse + 8 * v));
   unsigned const k = scan::first_nonpositive(c_num[0], c_num[1], c_num[2], c_num[3]);
   if (__builtin_expect(k == 0 || k == 32, 0)) return -1.0;
   double const xa = kScanCoarse[k - 1];
-  __m512d const xav = _mm512_set1_pd(xa);
-  __m512d f_num[2], f_den[2];
+  scan::Lanes8 const xav = lanes::broadcast(xa);
+  scan::Lanes8 f_num[2], f_den[2];
   for (int v = 0; v < 2; ++v) {
-    __m512d const x = _mm512_mul_pd(xav, _mm512_load_pd(kScanFine + 8 * v));
+    scan::Lanes8 const x = xav * lanes::load(kScanFine + 8 * v);
     f_num[v] = scan::sextic(pn, x);
     f_den[v] = scan::sextic(pdn, x);
   }
@@ -156,11 +155,11 @@ PW85_V4_INLINE double scan_start(
   // point k (y <= 0): the first non-positive j is in 1..15.
   unsigned j = scan::first_nonpositive16(f_num[0], f_num[1]);
   j = j < 1 ? 1 : (j > 15 ? 15 : j);  // (rounding at the shared points)
-  __m512i const i1 = _mm512_set1_epi64(j - 1), i2 = _mm512_set1_epi64(j);
-  double const n1 = _mm512_cvtsd_f64(_mm512_permutex2var_pd(f_num[0], i1, f_num[1]));
-  double const e1 = _mm512_cvtsd_f64(_mm512_permutex2var_pd(f_den[0], i1, f_den[1]));
-  double const n2 = _mm512_cvtsd_f64(_mm512_permutex2var_pd(f_num[0], i2, f_num[1]));
-  double const e2 = _mm512_cvtsd_f64(_mm512_permutex2var_pd(f_den[0], i2, f_den[1]));
+  scan::LaneIndex8 const i1 = lanes::broadcast_index(j - 1), i2 = lanes::broadcast_index(j);
+  double const n1 = lanes::lane0(lanes::permute(f_num[0], i1, f_num[1]));
+  double const e1 = lanes::lane0(lanes::permute(f_den[0], i1, f_den[1]));
+  double const n2 = lanes::lane0(lanes::permute(f_num[0], i2, f_num[1]));
+  double const e2 = lanes::lane0(lanes::permute(f_den[0], i2, f_den[1]));
   double const l = scan_interpolate(n1, e1, n2, e2, xa * kScanFine[j - 1]);
   return l > 0.0 && l < 1.0 ? l : -1.0;
 }

@@ -21,7 +21,7 @@ namespace pw85 {
 namespace ddx {
 
 using dd::DD;
-constexpr bool kF = isa::kStaticFma;
+constexpr bool kF = kStaticFma;
 
 // x / d, d a double (one correction step: a few 2^-104 relative).
 inline DD div(DD x, double d) noexcept {

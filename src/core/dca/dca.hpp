@@ -9,7 +9,8 @@
 //  - contact_2d.cpp: the 2D Perram-Wertheim contact function, for comparison;
 //  - dca_3d.cpp: the plane-rotation method of X. Zheng, W. Iglesias and
 //    P. Palffy-Muhoray, "Distance of closest approach of two arbitrary hard
-//    ellipsoids" (preprint, October 14, 2008), and contact_zheng().
+//    ellipsoids" (preprint, October 14, 2008); contact_zheng() (the method
+//    PW85_METHOD_ZHENG) is in contact/zheng.cpp.
 //
 // Preconditions, checked by the C layer: every value finite, the matrices
 // positive definite, u of unit length (dca_2d, dca_zheng).

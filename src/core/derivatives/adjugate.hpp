@@ -28,7 +28,7 @@
 #include "common/sym3.hpp"
 #include "derivatives/derivatives.hpp"
 #include "derivatives/fast.hpp"
-#include "eval/f_rational_dd.hpp"
+#include "eval/f_coefficients_dd.hpp"
 
 namespace pw85 {
 namespace adjd {
@@ -132,7 +132,7 @@ PW85_V4_INLINE void kernel(double lh, double ll, Vec3 const &r, Sym3 const &q1, 
   __m512d const qa = _mm512_fmadd_pd(_mm512_set1_pd(nu.hi), vabs(a),
                                      _mm512_mul_pd(_mm512_set1_pd(lh), vabs(b)));
   // C = adj Q(lambda): entry k = P_k Q_k - S_k T_k (adj_index,
-  // f_rational_dd.hpp; lanes 6, 7 read the zero padding).
+  // f_coefficients_dd.hpp; lanes 6, 7 read the zero padding).
   AdjIndex const ix = adj_index();
   __m512i const ip = ix.p, iq = ix.q, is = ix.s, it = ix.t;
   DD const c = sub(mul_dd(perm_dd(q, ip), perm_dd(q, iq)), mul_dd(perm_dd(q, is), perm_dd(q, it)));

@@ -56,8 +56,9 @@ inline Status solve_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, bool 
 // The derivatives from DEFAULT's solution, by the variant of this CPU
 // (derivatives_variants.cpp).
 inline Status derivatives_variant(Status status, MethodResult const &res, Vec3 const &r,
-                                  Sym3 const &q1, Sym3 const &q2, Derivatives &d) noexcept {
-  return kernels().derivatives->from_solution(status, res, r, q1, q2, d);
+                                  Sym3 const &q1, Sym3 const &q2, DerivativeFields fields,
+                                  Derivatives &d) noexcept {
+  return kernels().derivatives->from_solution(status, res, r, q1, q2, fields, d);
 }
 
 // derivatives_variant; with the maximiser lambda above 1 - 2^-10, or
@@ -72,15 +73,16 @@ inline Status derivatives_variant(Status status, MethodResult const &res, Vec3 c
 // ellipsoid 1 about its centre is rotating the swapped pair's ellipsoid 2;
 // x0' = x0 - r, g' = -g in (E4)).
 inline Status derivatives_dispatch(Status status, MethodResult const &res, Vec3 const &r,
-                                   Sym3 const &q1, Sym3 const &q2, Derivatives &d) noexcept {
+                                   Sym3 const &q1, Sym3 const &q2, DerivativeFields fields,
+                                   Derivatives &d) noexcept {
   bool const near_one = is_solved(status, res) && res.lambda > 1.0 - 0x1p-10;
-  Status const first = near_one ? kNoConvergence : derivatives_variant(status, res, r, q1, q2, d);
+  Status const first = near_one ? kNoConvergence : derivatives_variant(status, res, r, q1, q2, fields, d);
   if (first != kNoConvergence || !is_solved(status, res) || !(res.lambda > 0.5)) return first;
   MethodResult swapped = res;
   swapped.lambda = 1.0 - res.lambda;
   Vec3 const nr{{-r[0], -r[1], -r[2]}};
   Derivatives e;
-  Status const second = derivatives_variant(status, swapped, nr, q2, q1, e);
+  Status const second = derivatives_variant(status, swapped, nr, q2, q1, fields, e);
   if (second != kOk && second != kInaccurate) {
     if (near_one) d = e;  // all NaN
     return second;
@@ -113,8 +115,8 @@ bool derivatives_from_default_ok(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) 
 
 Status contact_derivatives_from_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                                         Status status, MethodResult const &res,
-                                        Derivatives &d) noexcept {
-  return derivatives_dispatch(status, res, r, q1, q2, d);
+                                        Derivatives &d, DerivativeFields fields) noexcept {
+  return derivatives_dispatch(status, res, r, q1, q2, fields, d);
 }
 
 // Magnitudes far from 1: mu^2(2^e r, 2^2e Q1, 2^2e Q2) = mu^2(r, Q1, Q2), so
@@ -126,8 +128,8 @@ Status contact_derivatives_from_default(Vec3 const &r, Sym3 const &q1, Sym3 cons
 // torques and d_q scale back by 2^2t, g by 2^t, the Hessian not at all,
 // lambda is invariant. Every field is then computed at moderate magnitudes
 // and is finite wherever its value is in the range of double.
-Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                           Derivatives &d) noexcept {
+Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Derivatives &d,
+                           DerivativeFields fields) noexcept {
   double const mq1 = fastd::max_abs6(q1), mq2 = fastd::max_abs6(q2);
   double const mq = fastd::max2(mq1, mq2);
   double const mr = fastd::max_abs3(r);
@@ -135,7 +137,7 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
     bool const in_range = mq1 > kSafeLo && mq1 < kSafeHi && mq2 > kSafeLo && mq2 < kSafeHi;
     MethodResult res;
     Status const status = solve_default(r, q1, q2, in_range, res);
-    return derivatives_dispatch(status, res, r, q1, q2, d);
+    return derivatives_dispatch(status, res, r, q1, q2, fields, d);
   }
   int ex;
   std::frexp(mq, &ex);
@@ -152,7 +154,7 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   Derivatives s;
   MethodResult res;
   Status const status =
-      derivatives_dispatch(solve_default(rs, a, b, false, res), res, rs, a, b, s);
+      derivatives_dispatch(solve_default(rs, a, b, false, res), res, rs, a, b, fields, s);
   if (status != kOk && status != kInaccurate) {
     d = s;  // all NaN
     return status;
@@ -165,7 +167,7 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
   scale_by_power_of_two(s.d_q2, kSym, 2 * e + 2 * t);
   scale_by_power_of_two(s.hess_r12, kSym, 2 * e);
   double const *all = &s.mu2;
-  for (int i = 0; i < kFields; ++i) {
+  for (int i = 0; i < derivative_paths::computed_fields(fields); ++i) {
     if (!std::isfinite(all[i])) {
       double const nan = std::nan("");
       d = Derivatives{nan, nan, {nan, nan, nan}, {nan, nan, nan}, {nan, nan, nan},

@@ -21,11 +21,17 @@ struct Derivatives {
   double hess_r12[6];  // d^2 mu^2 / d r12^2, stored as Q         (E6)
 };
 
+// What contact_derivatives computes: every field, or the fields forces and
+// torques need (mu2, lambda, d_r12, d_theta1, d_theta2; d_q1, d_q2 and
+// hess_r12 are then NaN). Where the kAll call returns kOk or kInaccurate,
+// the kForces call returns the same status and the same bits in its fields.
+enum class DerivativeFields { kAll, kForces };
+
 // Preconditions (checked by the C layer): r != 0, finite, q1 and q2 finite
 // and positive definite. Returns kOk or kInaccurate (every field written),
 // or kNoConvergence (every field NaN).
-Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                           Derivatives &d) noexcept;
+Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Derivatives &d,
+                           DerivativeFields fields = DerivativeFields::kAll) noexcept;
 
 // contact_derivatives for a caller that already has DEFAULT's solution of
 // the pair (status and res as pw85_contact_function_method gives them: the
@@ -35,6 +41,7 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
 bool derivatives_from_default_ok(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept;
 Status contact_derivatives_from_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                                         Status status, MethodResult const &res,
-                                        Derivatives &d) noexcept;
+                                        Derivatives &d,
+                                        DerivativeFields fields = DerivativeFields::kAll) noexcept;
 
 }  // namespace pw85

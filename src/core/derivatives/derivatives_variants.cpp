@@ -24,8 +24,9 @@ using derivative_paths::is_solved;
 // the double-double products by the fused multiply-add when FMA is true.
 #define PW85_DERIVATIVES_VARIANT(name, TARGET, FMA)                                            \
   TARGET Status from_solution_##name(Status status, MethodResult const &res, Vec3 const &r,    \
-                                     Sym3 const &q1, Sym3 const &q2, Derivatives &d) noexcept { \
-    return derivatives_from<FMA>(status, res, r, q1, q2, d);                                   \
+                                     Sym3 const &q1, Sym3 const &q2, DerivativeFields fields,  \
+                                     Derivatives &d) noexcept {                                \
+    return derivatives_from<FMA>(status, res, r, q1, q2, fields, d);                           \
   }                                                                                            \
   constexpr DerivativeKernels kDerivatives_##name = {from_solution_##name};
 
@@ -35,27 +36,26 @@ PW85_DERIVATIVES_VARIANT(fma, PW85_TARGET_FMA, true)
 #endif
 
 #if PW85_ISA_LEVELS
-// x86-64-v4: (E9) first (adjugate.hpp), then (E8) and (E7).
+// x86-64-v4: (E9) first (adjugate.hpp), then (E8) and (E7). (E9) computes
+// every field for either fields: the Hessian's error estimate decides
+// whether (E9) is taken, and so which path computes the other fields.
 PW85_TARGET_V4 Status from_solution_v4(Status status, MethodResult const &res, Vec3 const &r,
-                                       Sym3 const &q1, Sym3 const &q2, Derivatives &d) noexcept {
-  if (is_solved(status, res) && adjd::adjugate_derivatives(res.lambda, res.mu2, r, q1, q2, d))
+                                       Sym3 const &q1, Sym3 const &q2, DerivativeFields fields,
+                                       Derivatives &d) noexcept {
+  if (is_solved(status, res) && adjd::adjugate_derivatives(res.lambda, res.mu2, r, q1, q2, d)) {
+    derivative_paths::drop_unrequested(fields, d);
     return status;
-  return derivatives_from<true>(status, res, r, q1, q2, d);
+  }
+  return derivatives_from<true>(status, res, r, q1, q2, fields, d);
 }
 constexpr DerivativeKernels kDerivatives_v4 = {from_solution_v4};
 #endif
 
 }  // namespace
 
-DerivativeKernels const *derivative_kernels_for(Variant v) noexcept {
-#if PW85_ISA_LEVELS
-  if (v == Variant::v4) return &kDerivatives_v4;
-#endif
-#if PW85_ISA_FMA
-  if (v != Variant::portable) return &kDerivatives_fma;
-#endif
-  (void)v;
-  return &kDerivatives_portable;
-}
+const DerivativeKernels derivative_kernels[kVariantCount] = {
+    kDerivatives_portable, PW85_IF_FMA(kDerivatives_fma, kDerivatives_portable),
+    PW85_IF_FMA(kDerivatives_fma, kDerivatives_portable),
+    PW85_IF_LEVELS(kDerivatives_v4, PW85_IF_FMA(kDerivatives_fma, kDerivatives_portable))};
 
 }  // namespace pw85

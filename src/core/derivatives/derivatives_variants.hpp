@@ -10,17 +10,20 @@
 namespace pw85 {
 
 struct Derivatives;
+enum class DerivativeFields;
 
 struct DerivativeKernels {
   // The derivatives of the pair from DEFAULT's solution (status, res):
-  // (E9) first on x86-64-v4, then (E8), then (E7) (docs/derivatives.md).
+  // (E9) first on x86-64-v4, then (E8), then (E7) (docs/derivatives.md);
+  // the fields of fields (derivatives.hpp), the others NaN.
   Status (*from_solution)(Status status, MethodResult const &res, Vec3 const &r,
-                          Sym3 const &q1, Sym3 const &q2, Derivatives &d) noexcept;
+                          Sym3 const &q1, Sym3 const &q2, DerivativeFields fields,
+                          Derivatives &d) noexcept;
 };
 
 // The kernels of variant v: x86-64-v4 (with (E9)), else the fused
 // multiply-add in the double-double products (fma and x86-64-v3) where
 // built, else the portable code.
-DerivativeKernels const *derivative_kernels_for(Variant v) noexcept;
+extern const DerivativeKernels derivative_kernels[kVariantCount];
 
 }  // namespace pw85

@@ -75,10 +75,11 @@ PW85_ALWAYS_INLINE double refine_inverse(double lambda, Sym3 const &q1, Sym3 con
 
 // The derivatives at lambda, DEFAULT's maximiser, with mu2 its value.
 // Returns false, out untouched, when an estimate exceeds its bound (or a
-// value is not finite).
+// value is not finite). d_q1 and d_q2 only when with_dq (otherwise 0); the
+// Hessian always (its estimate decides).
 template <bool F>
 PW85_ALWAYS_INLINE bool fast_derivatives(double lambda, double mu2, Vec3 const &r,
-                                         Sym3 const &q1, Sym3 const &q2,
+                                         Sym3 const &q1, Sym3 const &q2, bool with_dq,
                                          Derivatives &out) noexcept {
   double const nu = 1.0 - lambda;
   // X = Q(lambda)^{-1} from its Cholesky factor (chol_inverse).
@@ -155,8 +156,8 @@ PW85_ALWAYS_INLINE bool fast_derivatives(double lambda, double mu2, Vec3 const &
   double const c1 = -p * nus, c2 = -p * lam;
   for (int k = 0; k < kSym; ++k) {
     double const ss = (kI[k] == kJ[k] ? 1.0 : 2.0) * s[kI[k]] * s[kJ[k]];
-    o.d_q1[k] = c1 * ss;
-    o.d_q2[k] = c2 * ss;
+    o.d_q1[k] = with_dq ? c1 * ss : 0.0;
+    o.d_q2[k] = with_dq ? c2 * ss : 0.0;
   }
   // w = (1 - lambda)^2 Q1 s - lambda^2 Q2 s, h = 2 X w = dg/dlambda (E6).
   Vec3 w;

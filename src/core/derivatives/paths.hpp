@@ -24,6 +24,19 @@ constexpr int kMaxNewton = 6;   // Newton steps on f' = 0
 // along the last Newton step dl are accurate (second-order terms ~ its square).
 constexpr double kFirstOrder = 0x1p-46, kFirstOrderLast = 0x1p-30;
 constexpr int kFields = 29;  // doubles in Derivatives
+// The doubles of Derivatives that fields computes: all, or the first 11
+// (mu2, lambda, d_r12, d_theta1, d_theta2).
+constexpr int kForceFields = 11;
+inline int computed_fields(DerivativeFields fields) noexcept {
+  return fields == DerivativeFields::kAll ? kFields : kForceFields;
+}
+
+// The fields that fields does not compute (d_q1, d_q2, hess_r12) set to NaN.
+inline void drop_unrequested(DerivativeFields fields, Derivatives &d) noexcept {
+  double *const all = &d.mu2;
+  for (int i = computed_fields(fields); i < kFields; ++i)
+    all[i] = std::numeric_limits<double>::quiet_NaN();
+}
 
 inline double max_abs(Vec3 const &v) noexcept {
   return std::fmax(std::fabs(v[0]), std::fmax(std::fabs(v[1]), std::fabs(v[2])));
@@ -138,16 +151,23 @@ inline bool is_solved(Status status, MethodResult const &res) noexcept {
 
 // The derivatives from DEFAULT's solution (status, res): (E8), otherwise
 // (E7); the double-double products of arith/dd.hpp by FMA (F = true) or
-// Dekker's product.
+// Dekker's product. The fields of fields; the others NaN. (E8) computes the
+// Hessian for either fields (its error estimate decides whether (E8) is
+// taken) but d_q only for kAll; (E7) computes neither d_q nor the Hessian
+// for kForces.
 template <bool F>
 PW85_ALWAYS_INLINE Status derivatives_from(Status status, MethodResult const &res,
                                            Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                           Derivatives &d) noexcept {
+                                           DerivativeFields fields, Derivatives &d) noexcept {
   static_assert(sizeof(Derivatives) == 29 * sizeof(double), "plain struct of 29 doubles");
   bool const solved = is_solved(status, res);
   double lambda = res.lambda;
   // (E8): most pairs; otherwise the refined path (E7) below.
-  if (solved && fastd::fast_derivatives<F>(lambda, res.mu2, r, q1, q2, d)) return status;
+  bool const all_fields = fields == DerivativeFields::kAll;
+  if (solved && fastd::fast_derivatives<F>(lambda, res.mu2, r, q1, q2, all_fields, d)) {
+    drop_unrequested(fields, d);
+    return status;
+  }
   double const nan = std::numeric_limits<double>::quiet_NaN();
   Derivatives out;
   double *const all = &out.mu2;
@@ -213,8 +233,9 @@ PW85_ALWAYS_INLINE Status derivatives_from(Status status, MethodResult const &re
     Vec3 const v = multiply(qi, dsv);  // -ds/dlambda, for the first-order moves below
     // (E6): h = 2 Q^{-1} w, the same vector as 2 (1 - 2 lambda) s - 2 lambda (1 - lambda) v
     // without the cancellation.
-    Vec3 h;
-    for (int i = 0; i < kDim; ++i) h[i] = 2.0 * dd::to_double(matvec_dd2<F>(qi, ql, i, wd));
+    Vec3 h{{0.0, 0.0, 0.0}};
+    if (all_fields)
+      for (int i = 0; i < kDim; ++i) h[i] = 2.0 * dd::to_double(matvec_dd2<F>(qi, ql, i, wd));
     // The last Newton step dl, below half an ulp of lambda, is still large
     // relative to 1 - lambda when lambda is near 1 (and to lambda near 0): the
     // maximiser is lambda + dl, with 1 - lambda - dl and lambda + dl rounded
@@ -239,10 +260,12 @@ PW85_ALWAYS_INLINE Status derivatives_from(Status status, MethodResult const &re
         x0[i] -= (q1s[i] + nu * q1v[i]) * dl;
         q2s[i] -= q2v[i] * dl;
       }
-      Vec3 w[kDim];
-      for (int j = 0; j < kDim; ++j) w[j] = multiply(qi, multiply(dq, col[j]));
-      Sym3 const xdx{{w[0][0], w[1][0], w[2][0], w[1][1], w[2][1], w[2][2]}};
-      for (int k = 0; k < kSym; ++k) qi[k] += (ql[k] - xdx[k] * dl);
+      if (all_fields) {  // Q^{-1}: the Hessian's only
+        Vec3 w[kDim];
+        for (int j = 0; j < kDim; ++j) w[j] = multiply(qi, multiply(dq, col[j]));
+        Sym3 const xdx{{w[0][0], w[1][0], w[2][0], w[1][1], w[2][1], w[2][2]}};
+        for (int k = 0; k < kSym; ++k) qi[k] += (ql[k] - xdx[k] * dl);
+      }
       nu = nu - dl;
       lambda = lambda + dl;
     }
@@ -265,14 +288,14 @@ PW85_ALWAYS_INLINE Status derivatives_from(Status status, MethodResult const &re
       out.d_theta1[i] = -c1v[i];
       out.d_theta2[i] = c2v[i];
     }
-    for (int k = 0; k < kSym; ++k) {
+    for (int k = 0; all_fields && k < kSym; ++k) {
       double const w = kI[k] == kJ[k] ? 1.0 : 2.0;
       double const ss = w * s[kI[k]] * s[kJ[k]];
       out.d_q1[k] = c1 * ss;
       out.d_q2[k] = c2 * ss;
       out.hess_r12[k] = 2.0 * p * qi[k] - h[kI[k]] * h[kJ[k]] / d2f;
     }
-    for (int i = 0; i < kFields; ++i)
+    for (int i = 0; i < computed_fields(fields); ++i)
       if (!std::isfinite(all[i])) return kNoConvergence;
     d = out;
     return status;

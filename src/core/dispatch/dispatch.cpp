@@ -1,30 +1,16 @@
-// The CPU probe and the table of kernels per variant (kernels.hpp).
+// The table of kernels per variant (kernels.hpp), and the variants' names.
 #include "dispatch/kernels.hpp"
 
 namespace pw85 {
 
-namespace {
-
-Variant probe_cpu() noexcept {
-#if PW85_ISA_FMA || PW85_ISA_LEVELS
-  __builtin_cpu_init();  // the probe may run before libgcc's constructor
-#endif
-#if PW85_ISA_LEVELS
-  if (__builtin_cpu_supports("x86-64-v4")) return Variant::v4;
-  if (__builtin_cpu_supports("x86-64-v3")) return Variant::v3;
-#endif
-#if PW85_ISA_FMA
-  if (__builtin_cpu_supports("fma")) return Variant::fma;
-#endif
-  return Variant::portable;
-}
-
-Kernels make_kernels(Variant v) noexcept {
-  return Kernels{dd_kernels_for(v), overlap_dd_kernels_for(v), orientation_kernels_for(v),
-                 overlap_kernels_for(v), derivative_kernels_for(v)};
-}
-
-}  // namespace
+// Constant-initialised from the concepts' tables: no code runs to build it.
+const Kernels kernel_table[kVariantCount] = {
+#define PW85_KERNELS_ROW(v)                                                                  \
+  Kernels{&dd_kernels[v], &overlap_dd_kernels[v], &orientation_kernels[v], &overlap_kernels[v], \
+          &derivative_kernels[v], &default_kernels[v]}
+    PW85_KERNELS_ROW(0), PW85_KERNELS_ROW(1), PW85_KERNELS_ROW(2), PW85_KERNELS_ROW(3)
+#undef PW85_KERNELS_ROW
+};
 
 char const *variant_name(Variant v) noexcept {
   switch (v) {
@@ -46,23 +32,8 @@ bool variant_built(Variant v) noexcept {
   return false;
 }
 
-Variant cpu_variant() noexcept {
-  static Variant const variant = probe_cpu();
-  return variant;
-}
-
 bool variant_runs(Variant v) noexcept {
   return variant_built(v) && static_cast<int>(v) <= static_cast<int>(cpu_variant());
-}
-
-Kernels const &kernels_of(Variant v) noexcept {
-  static Kernels const table[kVariantCount] = {
-      make_kernels(Variant::portable), make_kernels(Variant::fma), make_kernels(Variant::v3),
-      make_kernels(Variant::v4)};
-  int i = static_cast<int>(v);
-  if (i < 0 || i >= kVariantCount) i = 0;
-  while (i > 0 && !variant_built(static_cast<Variant>(i))) --i;
-  return table[i];
 }
 
 }  // namespace pw85

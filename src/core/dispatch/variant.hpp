@@ -45,6 +45,19 @@
 #define PW85_ISA_LEVELS 0
 #endif
 
+// Rows of a concept's table of variants (dispatch/kernels.hpp): the table
+// of a variant where the build compiles it, else the fallback.
+#if PW85_ISA_FMA
+#define PW85_IF_FMA(table, fallback) table
+#else
+#define PW85_IF_FMA(table, fallback) fallback
+#endif
+#if PW85_ISA_LEVELS
+#define PW85_IF_LEVELS(table, fallback) table
+#else
+#define PW85_IF_LEVELS(table, fallback) fallback
+#endif
+
 namespace pw85 {
 
 enum class Variant : unsigned char { portable, fma, v3, v4 };
@@ -63,8 +76,18 @@ bool variant_built(Variant v) noexcept;
 // Whether this build compiled the variant and this CPU can run it.
 bool variant_runs(Variant v) noexcept;
 
-// The variant the library runs on this CPU: the highest that runs. Probed
-// once per process.
-Variant cpu_variant() noexcept;
+// The variant the library runs on this CPU: the highest that runs. The CPU
+// is probed once, by libgcc's constructor (__cpu_indicator_init) when the
+// program starts; __builtin_cpu_supports reads the features it recorded.
+inline Variant cpu_variant() noexcept {
+#if PW85_ISA_LEVELS
+  if (__builtin_cpu_supports("x86-64-v4")) return Variant::v4;
+  if (__builtin_cpu_supports("x86-64-v3")) return Variant::v3;
+#endif
+#if PW85_ISA_FMA
+  if (__builtin_cpu_supports("fma")) return Variant::fma;
+#endif
+  return Variant::portable;
+}
 
 }  // namespace pw85

@@ -48,13 +48,9 @@ PW85_DD_VARIANT(fma, PW85_TARGET_FMA, true, f_stationary_avx)
 
 }  // namespace
 
-DdKernels const *dd_kernels_for(Variant v) noexcept {
-#if PW85_ISA_FMA
-  if (v != Variant::portable) return &kDd_fma;
-#endif
-  (void)v;
-  return &kDd_portable;
-}
+const DdKernels dd_kernels[kVariantCount] = {
+    kDd_portable, PW85_IF_FMA(kDd_fma, kDd_portable), PW85_IF_FMA(kDd_fma, kDd_portable),
+    PW85_IF_FMA(kDd_fma, kDd_portable)};
 
 bool f_eval_dd(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                FEvalDD &out) noexcept {

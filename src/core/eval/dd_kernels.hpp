@@ -25,6 +25,6 @@ struct DdKernels {
 };
 
 // The kernels of variant v: FMA from the fma variant up, where built.
-DdKernels const *dd_kernels_for(Variant v) noexcept;
+extern const DdKernels dd_kernels[kVariantCount];
 
 }  // namespace pw85

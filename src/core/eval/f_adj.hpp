@@ -18,7 +18,7 @@
 namespace pw85 {
 
 // One pair (AdjEval), or one pair per vector lane (V a lanes::VecD, S and T
-// start_lanes.hpp's SymL and Vec3L: contact/default_lanes.cpp), with the
+// start_lanes.hpp's SymL and Vec3L: contact/default.hpp), with the
 // same operations in the same order in f_eval_adj and adj_error below.
 template <class V, class S, class T>
 struct AdjEvalOf {

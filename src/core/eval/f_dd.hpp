@@ -118,7 +118,7 @@ PW85_ALWAYS_INLINE bool f_eval_dd_impl(double lambda, Vec3 const &r, Sym3 const 
 // s is close to Q^{-1} r, so the result then errs by at most ~7u relative:
 // u/2 for each rounded sum and for 1 - lambda, u/2 per operation, the
 // subtraction at most doubling the relative errors of its operands
-// (docs/methods.md, (M11)). DEFAULT (default.cpp) uses the form only where
+// (docs/methods.md, (M11)). DEFAULT (default.hpp) uses the form only where
 // its bound says s is that close. BRENT (brent.cpp) uses it on its
 // Cholesky s, which in the class [0.001, 1000] can be farther; BRENT's
 // error estimate (methods.cpp, eq. (M10)) does not rely on this bound.
@@ -185,8 +185,8 @@ PW85_ALWAYS_INLINE PW85_TARGET_FMA __m256d avx_two_sum(__m256d a, __m256d b,
 // 0-3 of the symmetric storage, lanes of rr the entries 4-5 and r_0 s_0,
 // r_1 s_1; each quadratic form's terms are summed pairwise by two_sum, the
 // errors accumulated in double (Ogita, Rump and Oishi's Dot2, as above).
-// Same results as the scalar form on 800000 random (lambda, s); 7-9 ns per
-// DEFAULT call faster in classes 1-3 of bench_contact.
+// Same results as the scalar form on random (lambda, s); faster per DEFAULT
+// call in classes 1-3 (build/bench/bench_contact).
 PW85_ALWAYS_INLINE PW85_TARGET_FMA double f_stationary_avx(
     double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Vec3 const &s) noexcept {
   using namespace dd;

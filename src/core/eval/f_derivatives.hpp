@@ -14,7 +14,7 @@ namespace pw85 {
 
 // f = p phi and its first three derivatives from phi, phi', phi'', phi'''.
 // For one pair (T = double) or one pair per vector lane (T a vector type,
-// contact/rational_lanes.cpp).
+// contact/default.hpp, coefficient_step_lanes).
 template <class T, class Eval>
 PW85_ALWAYS_INLINE void set_f_from_phi(T lambda, T phi, T phi1, T phi2, T phi3,
                                        Eval &e) noexcept {

@@ -137,7 +137,7 @@ bool fast_point(double &lambda_io, Vec3 const &r, Sym3 const &q1, Sym3 const &q2
 // scaling (below); g's other fields untouched.
 Status contact_point(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
                      ContactGeometry &g) noexcept {
-  // PW85_METHOD_DEFAULT (src/core/default.cpp, docs/methods.md).
+  // PW85_METHOD_DEFAULT (src/core/contact/default.hpp, docs/methods.md).
   MethodResult res;
   Status status = contact_method(kMethodDefault, r, q1, q2, res);
   double lambda = res.lambda;

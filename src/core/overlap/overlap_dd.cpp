@@ -156,13 +156,10 @@ PW85_OVERLAP_DD_VARIANT(fma, PW85_TARGET_FMA, true)
 
 }  // namespace
 
-OverlapDdKernels const *overlap_dd_kernels_for(Variant v) noexcept {
-#if PW85_ISA_FMA
-  if (v != Variant::portable) return &kOverlapDd_fma;
-#endif
-  (void)v;
-  return &kOverlapDd_portable;
-}
+const OverlapDdKernels overlap_dd_kernels[kVariantCount] = {
+    kOverlapDd_portable, PW85_IF_FMA(kOverlapDd_fma, kOverlapDd_portable),
+    PW85_IF_FMA(kOverlapDd_fma, kOverlapDd_portable),
+    PW85_IF_FMA(kOverlapDd_fma, kOverlapDd_portable)};
 
 double witness_g_dd(Sym3 const &q, Vec3 const &x, Vec3 const &c) noexcept {
   return kernels().overlap_dd->witness_g(q, x, c);

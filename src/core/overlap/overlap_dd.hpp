@@ -50,6 +50,6 @@ struct OverlapDdKernels {
   void (*witness_pair)(Sym3 const &q1, Sym3 const &q2, Vec3 const &r, Vec3 const &hi,
                        Vec3 const &lo, bool from_c2, double g[2]) noexcept;
 };
-OverlapDdKernels const *overlap_dd_kernels_for(Variant v) noexcept;
+extern const OverlapDdKernels overlap_dd_kernels[kVariantCount];
 
 }  // namespace pw85

@@ -117,13 +117,8 @@ PW85_OVERLAP_VARIANT(v4, PW85_TARGET_V4, 8)
 
 }  // namespace
 
-OverlapKernels const *overlap_kernels_for(Variant v) noexcept {
-#if PW85_ISA_LEVELS
-  if (v == Variant::v4) return &kOverlap_v4;
-  if (v == Variant::v3) return &kOverlap_v3;
-#endif
-  (void)v;
-  return &kOverlap_portable;
-}
+const OverlapKernels overlap_kernels[kVariantCount] = {
+    kOverlap_portable, kOverlap_portable, PW85_IF_LEVELS(kOverlap_v3, kOverlap_portable),
+    PW85_IF_LEVELS(kOverlap_v4, kOverlap_portable)};
 
 }  // namespace pw85

@@ -23,6 +23,6 @@ struct OverlapKernels {
 
 // The kernels of variant v: x86-64-v4, x86-64-v3 where built, else the
 // portable code (the fma variant has no kernels of its own here).
-OverlapKernels const *overlap_kernels_for(Variant v) noexcept;
+extern const OverlapKernels overlap_kernels[kVariantCount];
 
 }  // namespace pw85

@@ -1,6 +1,6 @@
 // The seven positive coefficients of f (docs/methods.md, eqs. (M12)-(M13))
 // computed in double-double with AVX-512, then f and its derivatives from
-// them in double (DEFAULT's fast path on x86-64-v4, default.cpp).
+// them in double (DEFAULT's fast path on x86-64-v4, default.hpp).
 //
 // With s = 1 - lambda, t = lambda (Bernstein form, eq. (M13)):
 //   f = s t A / B,  A = a0 s^2 + a1 s t + a2 t^2,
@@ -28,100 +28,99 @@
 #include "common/lanes.hpp"
 #include "common/sym3.hpp"
 
-#if PW85_ISA_LEVELS
-#include <immintrin.h>
-#endif
 
 namespace pw85 {
 
 // Coefficients, in this order: a0, a1, a2, d0, d1, d2, d3, each times
 // scale, a power of two (f = s t A / B does not depend on it).
-struct RationalDD {
+struct CoefficientsDD {
   double c[8];
   double scale;
-  unsigned ok;  // bit j: coefficient j passed its test (rational_coefficients_dd)
+  unsigned ok;  // bit j: coefficient j passed its test (coefficients_dd)
 };
 
 #if PW85_ISA_LEVELS
 namespace rdd {
 
+using lanes::Lanes8;
+using lanes::LaneIndex8;
+
 struct DD {
-  __m512d h, l;
+  Lanes8 h, l;
 };
 
 // (a + b) exactly as h + e (Knuth's two_sum).
-PW85_V4_INLINE DD two_sum(__m512d a, __m512d b) {
-  __m512d const s = _mm512_add_pd(a, b);
-  __m512d const bb = _mm512_sub_pd(s, a);
-  __m512d const e =
-      _mm512_add_pd(_mm512_sub_pd(a, _mm512_sub_pd(s, bb)), _mm512_sub_pd(b, bb));
+PW85_V4_INLINE DD two_sum(Lanes8 a, Lanes8 b) {
+  Lanes8 const s = a + b;
+  Lanes8 const bb = s - a;
+  Lanes8 const e = (a - (s - bb)) + (b - bb);
   return DD{s, e};
 }
 
 // a b exactly as h + e.
-PW85_V4_INLINE DD two_prod(__m512d a, __m512d b) {
-  __m512d const p = _mm512_mul_pd(a, b);
-  return DD{p, _mm512_fmsub_pd(a, b, p)};
+PW85_V4_INLINE DD two_prod(Lanes8 a, Lanes8 b) {
+  Lanes8 const p = a * b;
+  return DD{p, lanes::fms(a, b, p)};
 }
 
 // x + y for unnormalised pairs: the high parts by two_sum, the low parts
 // summed in double (error <= u |x.l + y.l + e| + ...: second order).
 PW85_V4_INLINE DD add(DD x, DD y) {
   DD const s = two_sum(x.h, y.h);
-  return DD{s.h, _mm512_add_pd(s.l, _mm512_add_pd(x.l, y.l))};
+  return DD{s.h, s.l + (x.l + y.l)};
 }
 
 PW85_V4_INLINE DD sub(DD x, DD y) {
-  DD const s = two_sum(x.h, _mm512_sub_pd(_mm512_setzero_pd(), y.h));
-  return DD{s.h, _mm512_add_pd(s.l, _mm512_sub_pd(x.l, y.l))};
+  DD const s = two_sum(x.h, Lanes8{} - y.h);
+  return DD{s.h, s.l + (x.l - y.l)};
 }
 
 // x v, x a pair, v exact: h + l (the l of x times v rounded).
-PW85_V4_INLINE DD mul_d(DD x, __m512d v) {
+PW85_V4_INLINE DD mul_d(DD x, Lanes8 v) {
   DD const p = two_prod(x.h, v);
-  return DD{p.h, _mm512_fmadd_pd(x.l, v, p.l)};
+  return DD{p.h, lanes::fma(x.l, v, p.l)};
 }
 
 // x y for two pairs; x.l y.l (below u^2 |x y|) is left to the error bound.
 PW85_V4_INLINE DD mul_dd(DD x, DD y) {
   DD const p = two_prod(x.h, y.h);
-  return DD{p.h, _mm512_fmadd_pd(x.h, y.l, _mm512_fmadd_pd(x.l, y.h, p.l))};
+  return DD{p.h, lanes::fma(x.h, y.l, lanes::fma(x.l, y.h, p.l))};
 }
 
-PW85_V4_INLINE __m512d perm(__m512d v, __m512i idx) { return _mm512_permutex2var_pd(v, idx, v); }
+PW85_V4_INLINE Lanes8 perm(Lanes8 v, LaneIndex8 idx) { return lanes::permute(v, idx, v); }
 
-PW85_V4_INLINE __m512d vabs(__m512d v) { return _mm512_andnot_pd(_mm512_set1_pd(-0.0), v); }
+PW85_V4_INLINE Lanes8 vabs(Lanes8 v) { return lanes::vabs(v); }
 
 // One round of the transposed reduction: lanes of x and y combined by idx_a
 // and idx_b (two-source permutes), then added.
-PW85_V4_INLINE DD fold(DD x, DD y, __m512i ia, __m512i ib) {
-  DD const a{_mm512_permutex2var_pd(x.h, ia, y.h), _mm512_permutex2var_pd(x.l, ia, y.l)};
-  DD const b{_mm512_permutex2var_pd(x.h, ib, y.h), _mm512_permutex2var_pd(x.l, ib, y.l)};
+PW85_V4_INLINE DD fold(DD x, DD y, LaneIndex8 ia, LaneIndex8 ib) {
+  DD const a{lanes::permute(x.h, ia, y.h), lanes::permute(x.l, ia, y.l)};
+  DD const b{lanes::permute(x.h, ib, y.h), lanes::permute(x.l, ib, y.l)};
   return add(a, b);
 }
 
-PW85_V4_INLINE __m512d fold_abs(__m512d x, __m512d y, __m512i ia, __m512i ib) {
-  return _mm512_add_pd(_mm512_permutex2var_pd(x, ia, y), _mm512_permutex2var_pd(x, ib, y));
+PW85_V4_INLINE Lanes8 fold_abs(Lanes8 x, Lanes8 y, LaneIndex8 ia, LaneIndex8 ib) {
+  return lanes::permute(x, ia, y) + lanes::permute(x, ib, y);
 }
 
 // The terms of the seven contractions (eqs. (M12)-(M13)) for adjugate
 // entries C_k = P_k Q_k - S_k T_k: pa, qa, sa, ta the factors P, Q, S, T from
 // Q1, pb ... tb from Q2, aw = w_k Q1_k, bw = w_k Q2_k, ri rj = w_k r_i r_j
 // (w_k = 1 on the diagonal, 2 off it). Lane by lane: in
-// rational_coefficients_dd lane k holds entry k of one pair; in
-// contact/rational_lanes.cpp the vectors of one entry k hold one pair per
+// coefficients_dd lane k holds entry k of one pair; in
+// contact/default.hpp, coefficient_step_lanes the vectors of one entry k hold one pair per
 // lane, and each lane performs the same IEEE operations, so the terms of a
 // pair are the same bits in both. v[j] = the term of coefficient j
 // (a0, a1, a2, 3 d0, d1, d2, 3 d3; products in double-double), m[j] = the
 // sum of the absolute values of its parts (for the error bound).
 struct Terms {
   DD v[7];
-  __m512d m[7];
+  Lanes8 m[7];
 };
 
-PW85_V4_INLINE void terms(__m512d pa, __m512d qa, __m512d sa, __m512d ta, __m512d pb,
-                          __m512d qb, __m512d sb, __m512d tb, __m512d aw, __m512d bw,
-                          __m512d ri, __m512d rj, Terms &out) {
+PW85_V4_INLINE void terms(Lanes8 pa, Lanes8 qa, Lanes8 sa, Lanes8 ta, Lanes8 pb, Lanes8 qb,
+                          Lanes8 sb, Lanes8 tb, Lanes8 aw, Lanes8 bw, Lanes8 ri, Lanes8 rj,
+                          Terms &out) {
   DD const paqa = two_prod(pa, qa), sata = two_prod(sa, ta);
   DD const pbqb = two_prod(pb, qb), sbtb = two_prod(sb, tb);
   DD const paqb = two_prod(pa, qb), pbqa = two_prod(pb, qa);
@@ -138,54 +137,52 @@ PW85_V4_INLINE void terms(__m512d pa, __m512d qa, __m512d sa, __m512d ta, __m512
   out.v[4] = mul_d(c1, bw);
   out.v[5] = mul_d(c2, aw);
   out.v[6] = mul_d(c2, bw);
-  __m512d const ac1 = _mm512_add_pd(vabs(paqa.h), vabs(sata.h));
-  __m512d const ac2 = _mm512_add_pd(vabs(pbqb.h), vabs(sbtb.h));
-  __m512d const acm = _mm512_add_pd(_mm512_add_pd(vabs(paqb.h), vabs(pbqa.h)),
-                                    _mm512_add_pd(vabs(satb.h), vabs(sbta.h)));
-  __m512d const arr = vabs(rr.h), va = vabs(aw), vb = vabs(bw);
-  out.m[0] = _mm512_mul_pd(ac1, arr);
-  out.m[1] = _mm512_mul_pd(acm, arr);
-  out.m[2] = _mm512_mul_pd(ac2, arr);
-  out.m[3] = _mm512_mul_pd(ac1, va);
-  out.m[4] = _mm512_mul_pd(ac1, vb);
-  out.m[5] = _mm512_mul_pd(ac2, va);
-  out.m[6] = _mm512_mul_pd(ac2, vb);
+  Lanes8 const ac1 = vabs(paqa.h) + vabs(sata.h);
+  Lanes8 const ac2 = vabs(pbqb.h) + vabs(sbtb.h);
+  Lanes8 const acm = (vabs(paqb.h) + vabs(pbqa.h)) + (vabs(satb.h) + vabs(sbta.h));
+  Lanes8 const arr = vabs(rr.h), va = vabs(aw), vb = vabs(bw);
+  out.m[0] = ac1 * arr;
+  out.m[1] = acm * arr;
+  out.m[2] = ac2 * arr;
+  out.m[3] = ac1 * va;
+  out.m[4] = ac1 * vb;
+  out.m[5] = ac2 * va;
+  out.m[6] = ac2 * vb;
 }
 
 // Index vectors of the adjugate entries k (Sym3 storage order 00 01 02 11
 // 12 22) as P_k Q_k - S_k T_k, e.g. adj_01 = Q_02 Q_12 - Q_01 Q_22; lanes
 // 6, 7 index lane 6 (the zero padding of a masked load of six entries).
 struct AdjIndex {
-  __m512i p, q, s, t;
+  LaneIndex8 p, q, s, t;
 };
 PW85_V4_INLINE AdjIndex adj_index() {
-  return AdjIndex{_mm512_setr_epi64(3, 2, 1, 0, 1, 0, 6, 6), _mm512_setr_epi64(5, 4, 4, 5, 2, 3, 6, 6),
-                  _mm512_setr_epi64(4, 1, 2, 2, 0, 1, 6, 6), _mm512_setr_epi64(4, 5, 3, 2, 4, 1, 6, 6)};
+  return AdjIndex{LaneIndex8{3, 2, 1, 0, 1, 0, 6, 6}, LaneIndex8{5, 4, 4, 5, 2, 3, 6, 6},
+                  LaneIndex8{4, 1, 2, 2, 0, 1, 6, 6}, LaneIndex8{4, 5, 3, 2, 4, 1, 6, 6}};
 }
 
 constexpr double kThird = 1.0 / 3.0;
 
 // The bits of the coefficients other than d0 (bit 3) and d3 (bit 6).
-constexpr unsigned kRatNotDet = 0x37;
+constexpr unsigned kCoefficientsNotDet = 0x37;
 
 // A coefficient from its sum over the adjugate entries t (double-double)
 // and the sum mt of the absolute values of its terms: (t.h + t.l) times
 // ts (the scale, times 1/3 for d0 and d3). ok: 32 u^2 mt <= 2^-56 (the sum),
 // and the sum > 0.
-PW85_V4_INLINE __m512d finish(DD t, __m512d mt, __m512d ts, __mmask8 &ok) {
-  __m512d const sum = _mm512_add_pd(t.h, t.l);
-  __m512d const bound = _mm512_mul_pd(mt, _mm512_set1_pd(32.0 * 0x1p-106 * 0x1p56));
-  ok = _mm512_cmp_pd_mask(bound, sum, _CMP_LE_OQ) &
-       _mm512_cmp_pd_mask(sum, _mm512_setzero_pd(), _CMP_GT_OQ);
-  return _mm512_mul_pd(sum, ts);
+PW85_V4_INLINE Lanes8 finish(DD t, Lanes8 mt, Lanes8 ts, lanes::LaneBits8 &ok) {
+  Lanes8 const sum = t.h + t.l;
+  Lanes8 const bound = mt * (32.0 * 0x1p-106 * 0x1p56);
+  ok = lanes::le_bits(bound, sum) & lanes::gt_bits(sum, Lanes8{});
+  return sum * ts;
 }
 
 // a b - p, one rounding (std::fma: an FMA instruction in the x86-64-v4
 // functions that use this file).
 PW85_V4_INLINE double fms(double a, double b, double p) { return std::fma(a, b, -p); }
-PW85_V4_INLINE __m512d fms(__m512d a, __m512d b, __m512d p) { return _mm512_fmsub_pd(a, b, p); }
+PW85_V4_INLINE Lanes8 fms(Lanes8 a, Lanes8 b, Lanes8 p) { return lanes::fms(a, b, p); }
 
-// Knuth's two_sum (as above) for T = double or T = __m512d.
+// Knuth's two_sum (as above) for T = double or T = Lanes8.
 template <class T>
 PW85_V4_INLINE void two_sum_t(T a, T b, T &s, T &e) {
   s = a + b;
@@ -199,8 +196,8 @@ constexpr int kDetTerms = 20;
 }  // namespace rdd
 
 // det Q for d0 = det Q1 or d3 = det Q2 (eq. (M13)) where the double-double
-// sum fails its bound (cancellation beyond 2^45 of the terms: in
-// bench_contact's class 3, 18 % of the pairs, by up to 2^75). By the
+// sum fails its bound (cancellation beyond 2^45 of the terms: nearly
+// singular matrices, build/tests/test-rational-dd --verbose). By the
 // cofactor expansion
 //   det Q = q00 q11 q22 - q00 q12^2 - q01^2 q22 + 2 q01 q02 q12 - q02^2 q11,
 // each product of three doubles written exactly as four doubles (two_prod
@@ -216,8 +213,8 @@ constexpr int kDetTerms = 20;
 // over the products (ten roundings; the other two parts of each product
 // are below u times these, so mp (1 + 2^-47) >= sum |terms|); det is then
 // within (2^-53 + 2^-56 + 2^-70) det < 1.13 u. T = double (one pair,
-// rational_coefficients_dd) or __m512d (one pair per lane,
-// contact/rational_lanes.cpp), the same IEEE operations in each lane.
+// coefficients_dd) or lanes::Lanes8 (one pair per lane,
+// contact/default.hpp, coefficient_step_lanes), the same IEEE operations in each lane.
 template <class T>
 PW85_V4_INLINE lanes::MaskOf<T> det_precise(T const q[6], T &det) noexcept {
   using rdd::fms;
@@ -249,16 +246,16 @@ PW85_V4_INLINE lanes::MaskOf<T> det_precise(T const q[6], T &det) noexcept {
 
 // Computes the seven coefficients, times out.scale, into out.c[0..6]
 // (out.c[7] = 0), and in out.ok the bits of those that pass their test
-// (rational_dets_precise below). Returns false when one is not positive or its bound
+// (coefficients_dets_precise below). Returns false when one is not positive or its bound
 // 32 u^2 (sum of |terms|) exceeds 2^-56 times it; otherwise each is within
 // 2.2 u of its exact value times out.scale (the double-double error, then
 // the rounding to double; d0 and d3, formed as tr(adj(Q) Q) / 3, one more
 // rounding). out.scale = 2^(-3E), T = tr Q1 + tr Q2 in [2^E, 2^(E+1)), so
-// that every d_j times the scale is below 8 (d_j <= T^3): f_eval_rational
+// that every d_j times the scale is below 8 (d_j <= T^3): f_eval_coefficients
 // forms B^5. T is positive and, for inputs within the range of contact.hpp
 // (kSafeLo, kSafeHi), 3E is well inside the exponent range.
-PW85_V4_INLINE bool rational_coefficients_dd(
-    Vec3 const &r, Sym3 const &q1, Sym3 const &q2, RationalDD &out) noexcept {
+PW85_V4_INLINE bool coefficients_dd(
+    Vec3 const &r, Sym3 const &q1, Sym3 const &q2, CoefficientsDD &out) noexcept {
   using namespace rdd;
   // The scale, from the inputs (off the dependency chain of the sums).
   double const tr = ((q1[0] + q1[3]) + q1[5]) + ((q2[0] + q2[3]) + q2[5]);
@@ -268,56 +265,53 @@ PW85_V4_INLINE bool rational_coefficients_dd(
   long long const sbits = (1023 - 3 * e) << 52;
   double scale;
   __builtin_memcpy(&scale, &sbits, sizeof scale);
-  __m512d const a = _mm512_maskz_loadu_pd(0x3F, q1.a);
-  __m512d const b = _mm512_maskz_loadu_pd(0x3F, q2.a);
-  __m512d const rv = _mm512_maskz_loadu_pd(0x07, r.x);
+  Lanes8 const a = lanes::load_first(q1.a, kSym);
+  Lanes8 const b = lanes::load_first(q2.a, kSym);
+  Lanes8 const rv = lanes::load_first(r.x, kDim);
   // Adjugate entries k as P_k Q_k - S_k T_k (adj_index; lanes 6, 7 are
   // zeroed below by the weights).
   AdjIndex const ix = adj_index();
-  __m512d const pa = perm(a, ix.p), qa = perm(a, ix.q), sa = perm(a, ix.s), ta = perm(a, ix.t);
-  __m512d const pb = perm(b, ix.p), qb = perm(b, ix.q), sb = perm(b, ix.s), tb = perm(b, ix.t);
+  Lanes8 const pa = perm(a, ix.p), qa = perm(a, ix.q), sa = perm(a, ix.s), ta = perm(a, ix.t);
+  Lanes8 const pb = perm(b, ix.p), qb = perm(b, ix.q), sb = perm(b, ix.s), tb = perm(b, ix.t);
   // Weights of the symmetric contraction sum_ij C_ij X_ij: 1 on the
   // diagonal, 2 off it, 0 in the padding lanes.
-  __m512d const w = _mm512_setr_pd(1.0, 2.0, 2.0, 1.0, 2.0, 1.0, 0.0, 0.0);
+  Lanes8 const w{1.0, 2.0, 2.0, 1.0, 2.0, 1.0, 0.0, 0.0};
   Terms v;
-  terms(pa, qa, sa, ta, pb, qb, sb, tb, _mm512_mul_pd(a, w), _mm512_mul_pd(b, w),
-        _mm512_mul_pd(perm(rv, _mm512_setr_epi64(0, 0, 0, 1, 1, 2, 3, 3)), w),
-        perm(rv, _mm512_setr_epi64(0, 1, 2, 1, 2, 2, 3, 3)), v);
-  DD const zero{_mm512_setzero_pd(), _mm512_setzero_pd()};
+  terms(pa, qa, sa, ta, pb, qb, sb, tb, a * w, b * w,
+        perm(rv, LaneIndex8{0, 0, 0, 1, 1, 2, 3, 3}) * w,
+        perm(rv, LaneIndex8{0, 1, 2, 1, 2, 2, 3, 3}), v);
+  DD const zero{Lanes8{}, Lanes8{}};
   // Transposed reduction: three rounds turn the eight vectors into one
   // whose lane j is the sum of the lanes of v[j].
-  __m512i const i1a = _mm512_setr_epi64(0, 8, 2, 10, 4, 12, 6, 14);
-  __m512i const i1b = _mm512_setr_epi64(1, 9, 3, 11, 5, 13, 7, 15);
-  __m512i const i2a = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13);
-  __m512i const i2b = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
-  __m512i const i3a = _mm512_setr_epi64(0, 1, 2, 3, 8, 9, 10, 11);
-  __m512i const i3b = _mm512_setr_epi64(4, 5, 6, 7, 12, 13, 14, 15);
+  LaneIndex8 const i1a{0, 8, 2, 10, 4, 12, 6, 14}, i1b{1, 9, 3, 11, 5, 13, 7, 15};
+  LaneIndex8 const i2a{0, 1, 8, 9, 4, 5, 12, 13}, i2b{2, 3, 10, 11, 6, 7, 14, 15};
+  LaneIndex8 const i3a{0, 1, 2, 3, 8, 9, 10, 11}, i3b{4, 5, 6, 7, 12, 13, 14, 15};
   DD const w01 = fold(v.v[0], v.v[1], i1a, i1b), w23 = fold(v.v[2], v.v[3], i1a, i1b);
   DD const w45 = fold(v.v[4], v.v[5], i1a, i1b), w67 = fold(v.v[6], zero, i1a, i1b);
   DD const z0 = fold(w01, w23, i2a, i2b), z1 = fold(w45, w67, i2a, i2b);
   DD const t = fold(z0, z1, i3a, i3b);
-  __m512d const m01 = fold_abs(v.m[0], v.m[1], i1a, i1b), m23 = fold_abs(v.m[2], v.m[3], i1a, i1b);
-  __m512d const m45 = fold_abs(v.m[4], v.m[5], i1a, i1b);
-  __m512d const m67 = fold_abs(v.m[6], _mm512_setzero_pd(), i1a, i1b);
-  __m512d const mt =
+  Lanes8 const m01 = fold_abs(v.m[0], v.m[1], i1a, i1b), m23 = fold_abs(v.m[2], v.m[3], i1a, i1b);
+  Lanes8 const m45 = fold_abs(v.m[4], v.m[5], i1a, i1b);
+  Lanes8 const m67 = fold_abs(v.m[6], Lanes8{}, i1a, i1b);
+  Lanes8 const mt =
       fold_abs(fold_abs(m01, m23, i2a, i2b), fold_abs(m45, m67, i2a, i2b), i3a, i3b);
   // Lanes: a0, a1, a2, 3 d0, d1, d2, 3 d3, 0.
-  __m512d const third = _mm512_setr_pd(1.0, 1.0, 1.0, kThird, 1.0, 1.0, kThird, 0.0);
-  __mmask8 ok;
-  __m512d const coef = finish(t, mt, _mm512_mul_pd(third, _mm512_set1_pd(scale)), ok);
-  _mm512_storeu_pd(out.c, coef);
+  Lanes8 const third{1.0, 1.0, 1.0, kThird, 1.0, 1.0, kThird, 0.0};
+  lanes::LaneBits8 ok;
+  Lanes8 const coef = finish(t, mt, third * scale, ok);
+  lanes::store(out.c, coef);
   out.scale = scale;
   out.ok = ok & 0x7F;
   return out.ok == 0x7F;
 }
 
-// After rational_coefficients_dd declined (out.ok: the coefficients that
+// After coefficients_dd declined (out.ok: the coefficients that
 // passed): true when a0, a1, a2, d1, d2 passed and det_precise accepts d0
 // and d3 where they failed (out.c[3], out.c[6]: det Q1, det Q2 times
 // out.scale, within 1.13 u).
-PW85_V4_INLINE bool rational_dets_precise(Sym3 const &q1, Sym3 const &q2,
-                                          RationalDD &out) noexcept {
-  if ((out.ok & rdd::kRatNotDet) != rdd::kRatNotDet) return false;
+PW85_V4_INLINE bool coefficients_dets_precise(Sym3 const &q1, Sym3 const &q2,
+                                          CoefficientsDD &out) noexcept {
+  if ((out.ok & rdd::kCoefficientsNotDet) != rdd::kCoefficientsNotDet) return false;
   Sym3 const *const qs[2] = {&q1, &q2};
   for (int m = 0; m < 2; ++m) {
     int const j = m == 0 ? 3 : 6;
@@ -334,21 +328,21 @@ PW85_V4_INLINE bool rational_dets_precise(Sym3 const &q1, Sym3 const &q2,
 // f and its first four derivatives at lambda from the coefficients
 // (Bernstein form above; phi = A / B, f = s t phi, eq. (M12)), and a bound
 // edf on the error of the computed f' (first order in u). f itself is
-// within kRationalRel f of the exact value (positive terms only).
-// One pair (T = double, K = RationalDD: default.cpp) or one pair per lane
-// (T a vector type, K its coefficients: contact/rational_lanes.cpp), the same
+// within kCoefficientRel f of the exact value (positive terms only).
+// One pair (T = double, K = CoefficientsDD: default.hpp) or one pair per lane
+// (T a vector type, K its coefficients: contact/default.hpp, coefficient_step_lanes), the same
 // IEEE operations in each lane. Returns true (T = double) or the mask of the
 // lanes where the evaluation holds.
 template <class T>
-struct RatEvalT {
+struct CoefficientEvalOf {
   T lambda, phi, dphi;
   T f, df, d2f, d3f, d4f, edf;
 };
-typedef RatEvalT<double> RatEval;
+typedef CoefficientEvalOf<double> CoefficientEval;
 
 template <class T, class K>
-PW85_ALWAYS_INLINE lanes::MaskOf<T> f_eval_rational(T lambda, K const &k,
-                                                    RatEvalT<T> &e) noexcept {
+PW85_ALWAYS_INLINE lanes::MaskOf<T> f_eval_coefficients(T lambda, K const &k,
+                                                    CoefficientEvalOf<T> &e) noexcept {
   using lanes::vabs;
   using lanes::finite;
   T const a0 = k.c[0], a1 = k.c[1], a2 = k.c[2];
@@ -367,7 +361,7 @@ PW85_ALWAYS_INLINE lanes::MaskOf<T> f_eval_rational(T lambda, K const &k,
   // Eq. (M25): phi_k = d^k phi / d lambda^k = N_k / B^(k + 1), from sum_i C(k, i)
   // phi_i B_(k-i) = A_k: the numerators are products and sums only, so
   // they are formed while the division runs (B^5 stays in range: the
-  // coefficients are scaled, rational_coefficients_dd).
+  // coefficients are scaled, coefficients_dd).
   T const ib = 1.0 / B;
   T const ib2 = ib * ib, ib3 = ib2 * ib, ib4 = ib2 * ib2, ib5 = ib4 * ib;
   T const N1 = A1 * B - A * B1;
