@@ -9,7 +9,7 @@
 // d = (a1max + a2max) 10^U(-2, 0.5), so from deep overlap to far apart), it
 //  - computes a reference mu2 in __float128 (bisection then Newton on f'
 //    evaluated through an LDL^T factorisation in __float128 of Q(lambda)
-//    formed from the double inputs; see reference_mu2);
+//    formed from the double inputs; bench/reference_mu2.hpp);
 //  - times every method of the table `methods` below (R repetitions of one
 //    pass over the N pairs; ns per call = thread CPU time of the pass / N;
 //    median, min, max over the repetitions; the median wall-clock time too);
@@ -39,6 +39,7 @@
 #include <time.h>
 
 #include "bench_common.hpp"
+#include "reference_mu2.hpp"
 #include "pw85.h"
 
 #ifndef PW85_BENCH_FLAGS
@@ -101,83 +102,6 @@ void random_ellipsoid(Rng &g, double lo, double hi, double q[6], double &amax) {
   bench::random_axes(g, lo, hi, a, rot);
   amax = std::max({a[0], a[1], a[2]});
   bench::q_from_axes(a, rot, q);
-}
-
-// ---- reference in __float128 ----------------------------------------------
-using F128 = __float128;
-
-struct RefEval {
-  F128 f, df, d2f;
-};
-
-bool ref_eval(F128 lam, Pair const &p, RefEval &e) {
-  F128 q[6], d[6];
-  for (int i = 0; i < 6; ++i) {
-    q[i] = (1 - lam) * (F128)p.q1[i] + lam * (F128)p.q2[i];
-    d[i] = (F128)p.q2[i] - (F128)p.q1[i];
-  }
-  // LDL^T
-  F128 const d0 = q[0];
-  if (!(d0 > 0)) return false;
-  F128 const l10 = q[1] / d0, l20 = q[2] / d0;
-  F128 const d1 = q[3] - l10 * q[1];
-  if (!(d1 > 0)) return false;
-  F128 const ee = q[4] - l20 * q[1];
-  F128 const l21 = ee / d1;
-  F128 const d2 = q[5] - l20 * q[2] - l21 * ee;
-  if (!(d2 > 0)) return false;
-  auto solve = [&](F128 const b[3], F128 x[3]) {
-    F128 const y0 = b[0], y1 = b[1] - l10 * y0, y2 = b[2] - l20 * y0 - l21 * y1;
-    x[2] = y2 / d2;
-    x[1] = y1 / d1 - l21 * x[2];
-    x[0] = y0 / d0 - l10 * x[1] - l20 * x[2];
-  };
-  auto mul = [&](F128 const a[6], F128 const x[3], F128 y[3]) {
-    y[0] = a[0] * x[0] + a[1] * x[1] + a[2] * x[2];
-    y[1] = a[1] * x[0] + a[3] * x[1] + a[4] * x[2];
-    y[2] = a[2] * x[0] + a[4] * x[1] + a[5] * x[2];
-  };
-  F128 const r[3] = {p.r[0], p.r[1], p.r[2]};
-  F128 s[3], u[3], v[3];
-  solve(r, s);
-  mul(d, s, u);
-  solve(u, v);
-  F128 const phi = r[0] * s[0] + r[1] * s[1] + r[2] * s[2];
-  F128 const phi1 = -(s[0] * u[0] + s[1] * u[1] + s[2] * u[2]);
-  F128 const phi2 = 2 * (u[0] * v[0] + u[1] * v[1] + u[2] * v[2]);
-  F128 const pp = lam * (1 - lam), p1 = 1 - 2 * lam;
-  e.f = pp * phi;
-  e.df = p1 * phi + pp * phi1;
-  e.d2f = -2 * phi + 2 * p1 * phi1 + pp * phi2;
-  return true;
-}
-
-// Maximiser of the concave f: bisection on the sign of f' down to a bracket
-// of 2^-40, then Newton steps on f' in __float128 until the step is below
-// 1e-30; mu2 = f at the final lambda (its error in lambda enters mu2 only
-// to second order).
-__float128 reference_mu2(Pair const &p) {
-  F128 lo = 0, hi = 1;
-  RefEval e;
-  for (int k = 0; k < 40; ++k) {
-    F128 const m = (lo + hi) / 2;
-    if (!ref_eval(m, p, e)) return NAN;
-    if (e.df > 0)
-      lo = m;
-    else
-      hi = m;
-  }
-  F128 lam = (lo + hi) / 2;
-  for (int k = 0; k < 8; ++k) {
-    if (!ref_eval(lam, p, e)) return NAN;
-    F128 const step = -e.df / e.d2f;
-    F128 next = lam + step;
-    if (!(next > lo && next < hi)) break;
-    lam = next;
-    if (fabsq(step) < (F128)1e-30) break;
-  }
-  if (!ref_eval(lam, p, e)) return NAN;
-  return e.f;
 }
 
 using bench::cpu_model;
@@ -246,7 +170,7 @@ int main(int argc, char **argv) {
       random_ellipsoid(g, bounds[c][0], bounds[c][1], p.q1, am1);
       random_ellipsoid(g, bounds[c][0], bounds[c][1], p.q2, am2);
       bench::random_offset(g, am1 + am2, bench::kContactSpan, p.r);
-      p.refq = reference_mu2(p);
+      p.refq = bench::reference_mu2(p.r, p.q1, p.q2);
       p.ref = (double)p.refq;
     }
     if (dump)
