@@ -248,6 +248,12 @@ inline bool p_negative(double l, Vec3 const &r, Pair const rr[kSym], Sym3 const 
   Newton nv;
   // Last evaluated point, for the refined witness below.
   double lw = -1.0, d2w = 0.0, estw = 2.0;
+  // Newton converges quadratically until the steps reach the rounding noise
+  // of the double f'(l) (about kappa(Q) u / |f''|, far above 2^-52 for
+  // ill-conditioned Q(l)); from then on they no longer shrink, and the
+  // double-double loop below refines l. Stalled: a step of at most 2^-26
+  // l (1 - l) not below a quarter of the previous one.
+  double prev_step = 1.0;
   for (int it = 0; it < 40; ++it) {
     if (!newton_values(l, r, q1, q2, d, nv)) break;
     // Early separation: f(l) >= 1 at a grid point, certified by p(l) <= 0.
@@ -265,12 +271,15 @@ inline bool p_negative(double l, Vec3 const &r, Pair const rr[kSym], Sym3 const 
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     next = to_grid(next);
     double const step = std::fabs(next - l);
+    bool const stalled = step <= 0x1p-26 * std::fmin(l, 1.0 - l) && step >= 0.25 * prev_step;
+    bool const converged = step <= 0x1p-52 || stalled;
+    prev_step = step;
     // Early overlap: well below 1, witness at the current point (eq. (O6)).
     double const est = nv.f + 0.5 * nv.df * (nv.df / -nv.d2f);
     lw = l;
     d2w = nv.d2f;
     estw = est;
-    if (est < 0.95 || step <= 0x1p-52) {
+    if (est < 0.95 || converged) {
       double const nu = 1.0 - l;
       Vec3 x = multiply(q1, nv.s);
       for (int i = 0; i < kDim; ++i) x[i] *= nu;
@@ -278,7 +287,7 @@ inline bool p_negative(double l, Vec3 const &r, Pair const rr[kSym], Sym3 const 
         st = kStageFilter;
         return 1;
       }
-      if (step <= 0x1p-52) break;
+      if (converged) break;
     }
     if (next == l || hi - lo <= 0x1p-52) break;
     l = next;
