@@ -759,6 +759,30 @@ static void test_matrix_ratio(void) {
   g_assert_cmpint(checked, >, 350);
 }
 
+/* Q1 nearly singular (smallest eigenvalue ~4e-18), r12 along its thin
+ * direction, lambda ~3.5e-9: f' computed from a solve refined to ~2^-60 |s|
+ * is too noisy for the Newton steps to settle (docs/derivatives.md, (E7)),
+ * which then go on in double-double. PW85_OK on every variant, DEFAULT's
+ * mu2, and the accuracy of the reference pairs against __float128. */
+static void test_thin_direction(void) {
+  double const r[3] = {0x1.033e80df146afp+0, -0x1.fe6e01f6990f8p+0, 0x1.ca756a21fbd73p-1};
+  double const q1[6] = {0x1.ec661d778fec2p-2, 0x1.fac907446d3fp-2,  0x1.18d013d6036b4p-4,
+                        0x1.0e6fa2590c9b3p-1, -0x1.0bb43f203545cp-4, 0x1.fb5d4eeb2b6edp-1};
+  double const q2[6] = {0x1.1ea0a1466ebdep-1, 0x1.49c45c27aae9ap-2, 0x1.42bbad45f6196p-5,
+                        0x1.875ed9f5adf74p-1, -0x1.d839d1c34d47p-6, 0x1.fe31d8c186428p-1};
+  pw85_result res;
+  g_assert_cmpint(pw85_contact_function_method(r, q1, q2, PW85_METHOD_DEFAULT, &res), ==, PW85_OK);
+  pw85_derivatives_t d;
+  g_assert_cmpint(pw85_contact_derivatives(r, q1, q2, &d), ==, PW85_OK);
+  double const *all = &d.mu2;
+  for (size_t i = 0; i < sizeof d / sizeof(double); i++) g_assert_true(isfinite(all[i]));
+  g_assert_cmpfloat(rel_error(d.mu2, res.mu2), <=, 2e-14);
+  maxima mx = {0};
+  GRand *rng = g_rand_new_with_seed(7);
+  check_pair(r, q1, q2, &mx, rng);
+  g_rand_free(rng);
+}
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   g_test_add_func("/pw85_contact_derivatives/formulas-finite-differences", test_formulas_fd);
@@ -768,6 +792,7 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact_derivatives/scaling", test_scaling);
   g_test_add_func("/pw85_contact_derivatives/far_pairs", test_far_pairs);
   g_test_add_func("/pw85_contact_derivatives/matrix_ratio", test_matrix_ratio);
+  g_test_add_func("/pw85_contact_derivatives/thin-direction", test_thin_direction);
   g_test_add_func("/pw85_contact_derivatives/bad-input", test_bad_input);
   g_test_add_func("/pw85_contact_derivatives/batch/forms", test_batch);
   g_test_add_func("/pw85_contact_derivatives/batch/lanes", test_batch_lanes);

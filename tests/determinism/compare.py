@@ -46,7 +46,6 @@ KNOWN_DIFFERENCES = {
     ("1480890", "pw85_contact_function_method/DEFAULT"),  # input 37208: 2^-476 vs 2^475
     ("1480891", "pw85_dca/DEFAULT"),
     ("1480907", "pw85_contact"),
-    ("3387488", "pw85_contact_derivatives"),  # input 85112: lambda = 3.5e-9
 }
 
 

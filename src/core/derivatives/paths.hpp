@@ -112,8 +112,9 @@ inline Vec3 cross(Vec3 const &a, Vec3 const &b) noexcept {
 // Values at one lambda: Cholesky of Q(lambda), s = s_hi + s_lo (refined),
 // f'(lambda) in double-double, x0 = (1 - lambda) Q1 s and Q2 s.
 // When Q(lambda) is too ill-conditioned for the refinement to converge
-// (cond(Q) u > 0.1, beyond the semi-axis class [0.001, 1000]), the solves
-// are in double-double throughout (f_dd.hpp, solve_dd_impl) and dd is set.
+// (cond(Q) u > 0.1, beyond the semi-axis class [0.001, 1000]), or when
+// force_dd is set, the solves are in double-double throughout (f_dd.hpp,
+// solve_dd_impl) and dd is set.
 struct AtLambda {
   Chol c;
   bool dd;
@@ -136,8 +137,8 @@ PW85_ALWAYS_INLINE bool solve_dd_pair(double lambda, Vec3 const &b, Sym3 const &
 
 template <bool F>
 PW85_ALWAYS_INLINE bool at_lambda(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
-                                  AtLambda &a) noexcept {
-  a.dd = !chol(interpolate(q1, q2, lambda), a.c) ||
+                                  bool force_dd, AtLambda &a) noexcept {
+  a.dd = !chol(interpolate(q1, q2, lambda), a.c) || force_dd ||
          !refined_solve(a.c, lambda, r, q1, q2, a.s_hi, a.s_lo);
   if (a.dd && !solve_dd_pair<F>(lambda, r, q1, q2, a.s_hi, a.s_lo)) return false;
   a.fp = refined_point_dd(lambda, q1, q2, a.s_hi, a.s_lo, a.x0, a.q2s);
@@ -178,11 +179,19 @@ PW85_ALWAYS_INLINE Status derivatives_from(Status status, MethodResult const &re
   // Newton steps on f'(lambda) = 0 (E7), f' in double-double, the slope
   // f'' by (E5) in double-double; usually none is needed: the maximiser is
   // then DEFAULT's lambda plus the first-order step, below.
+  // The refined s is accurate to ~2^-60 |s| (normwise), and f' to
+  // ~2^-60 |s| |(1 - lambda) Q1 s|: too coarse where s^T Q1 s is far
+  // below |s| |Q1 s| (Q1 nearly singular, r along its thin direction, lambda
+  // small; likewise Q2 near lambda = 1), where the Newton steps then wander
+  // with the noise of f'. When they have not settled after kMaxNewton
+  // steps, kMaxNewton more in double-double throughout (force_dd).
   AtLambda a;
+  bool force_dd = false;
+  int max_newton = kMaxNewton;
   for (int pass = 0;; ++pass) {
-    if (!at_lambda<F>(lambda, r, q1, q2, a)) return kNoConvergence;
+    if (!at_lambda<F>(lambda, r, q1, q2, force_dd, a)) return kNoConvergence;
     double nu = 1.0 - lambda;
-    if (pass < kMaxNewton && !a.dd) {
+    if (pass < max_newton && !a.dd) {
       // Cheap test first: the Newton step with f'' (E5) in double (one more
       // solve); far from the maximiser, step without the work below.
       Vec3 q1s;
@@ -245,11 +254,18 @@ PW85_ALWAYS_INLINE Status derivatives_from(Status status, MethodResult const &re
     double const dl = -a.fp / d2f;
     if (!(d2f < 0.0) || !std::isfinite(dl)) return kNoConvergence;
     double const rel = std::fabs(dl) / std::fmin(lambda, nu);
-    if (!(rel <= kFirstOrder) && (pass < kMaxNewton || !(rel <= kFirstOrderLast))) {
+    if (!(rel <= kFirstOrder) && pass == max_newton && !a.dd) {
+      // Not settled: the steps again from this lambda in double-double.
+      force_dd = true;
+      max_newton = pass + kMaxNewton;
+      continue;
+    }
+    if (!(rel <= kFirstOrder) && (pass < max_newton || !(rel <= kFirstOrderLast))) {
       // Too far for the first-order moves: a Newton step, and again; after
-      // kMaxNewton steps (f' at its noise level), the looser bound.
+      // max_newton steps in double-double (f' at its noise level), the
+      // looser bound.
       double const next = lambda + dl;
-      if (pass == kMaxNewton || !(next > 0.0 && next < 1.0)) return kNoConvergence;
+      if (pass == max_newton || !(next > 0.0 && next < 1.0)) return kNoConvergence;
       lambda = next;
       continue;
     }
