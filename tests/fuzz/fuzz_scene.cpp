@@ -452,7 +452,9 @@ void check_contact_time(Input const &in) {
   record(fn, s);
   CHECK(kDeterminism, s == s2 && same_bits(&t, &t2, 8), fn, s);
   CHECK(kStatus, in_list(s, {PW85_OK, PW85_ERR_INVALID_ARGUMENT, PW85_ERR_NOT_SPD,
-                             PW85_ERR_NO_CONVERGENCE}), fn, s);
+                             PW85_ERR_NO_CONVERGENCE, PW85_ERR_INACCURATE}), fn, s);
+  // PW85_ERR_INACCURATE is decided from the inputs before any evaluation.
+  CHECK(kStatus, s != PW85_ERR_INACCURATE || (t == 0.0 && evaluations == 0), fn, s);
   CHECK(kStatus, evaluations >= 0 && evaluations <= PW85_CONTACT_TIME_MAX_EVAL + 64, fn, s);
   // One decision, where no other argument is at fault first.
   bool const moderate_motion = all_finite(in.v12, 3) && all_finite(in.w1, 3) &&
