@@ -666,6 +666,37 @@ static void test_pairs_huge_matrices(void) {
   g_assert_cmpint(missed, ==, 0);
 }
 
+/* Discs of unit radius in the x-z plane, thickness sqrt(t) in y (q =
+ * {1, -t, 0, t, 0, 1}), centres 1 apart along x: they overlap for every t.
+ * For t subnormal, the plane normal of (S1) is subnormal and each support
+ * value n^T Q n underflows to 0: the bound must count the underflow, not
+ * separate the pair. The first case is the input the fuzz target found
+ * (tests/fuzz/corpus/configuration-subnormal-discs). Checked: the pair is
+ * found by pw85_configuration_pairs and by a trial move, as pw85_overlap
+ * finds it. */
+static void test_pairs_subnormal_entries(void) {
+  int missed = 0;
+  for (int k = 0; k <= 1074; k++) {
+    double const t1 = k == 0 ? 0x0.0000000004022p-1022 : ldexp(1.0, -k);
+    double const t2 = k == 0 ? 0x0.0000000003ffp-1022 : t1 * 0.75;
+    double const q[12] = {1.0, -t1, 0.0, t1, 0.0, 1.0, 1.0, -t2, 0.0, t2, 0.0, 1.0};
+    double const centres[6] = {0.0, 0.0, 0.0, 1.0, 0.0, 0.0};
+    if (pw85_overlap(centres + 3, q, q + 6) != 1) continue; /* t2 = 0: not SPD */
+    pw85_configuration *cf = NULL;
+    g_assert_cmpint(pw85_configuration_create(2, centres, q, NULL, &cf, NULL), ==, PW85_OK);
+    long long i[1], j[1], count = -1, moved = -7;
+    int const s = pw85_configuration_pairs(cf, 1.0, 1, 1, i, j, NULL, &count, NULL);
+    int const sm = pw85_configuration_test_move(cf, 1, centres + 3, q + 6, &moved);
+    if (s != PW85_OK || count != 1 || sm != PW85_OK || moved != 0) {
+      missed++;
+      g_test_message("k = %d: pairs status %d count %lld, test_move status %d j %lld", k, s,
+                     count, sm, moved);
+    }
+    pw85_configuration_destroy(cf);
+  }
+  g_assert_cmpint(missed, ==, 0);
+}
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   g_test_add_func("/pw85_configuration_pairs/open", test_pairs_open);
@@ -674,6 +705,7 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_configuration_pairs/dense", test_pairs_dense);
   g_test_add_func("/pw85_configuration_pairs/large_box", test_pairs_large);
   g_test_add_func("/pw85_configuration_pairs/huge_matrices", test_pairs_huge_matrices);
+  g_test_add_func("/pw85_configuration_pairs/subnormal_entries", test_pairs_subnormal_entries);
   g_test_add_func("/pw85_configuration_test_move/brute_force", test_move_brute_force);
   g_test_add_func("/pw85_configuration_update/brute_force", test_update);
   g_test_add_func("/pw85_configuration_neighbours/brute_force", test_neighbours_brute_force);

@@ -75,7 +75,6 @@ T *allocate(long long n) noexcept {
 // Relative margin of the bounding radii and of the broad-phase comparisons
 // (far above the rounding errors, far below any physical scale).
 constexpr double kMargin = 0x1p-40;
-constexpr double kMaxDouble = 0x1.fffffffffffffp+1023;
 
 // Largest |coordinate| of a centre in a scene without a box.
 constexpr double kMaxOpenCoordinate = 0x1p500;
@@ -143,25 +142,29 @@ inline bool spheres_apart(double const r[3], double reach) noexcept {
 
 // Upper bound of n^T Q n for a positive definite Q: the computed value plus
 // a bound of its rounding error, 32 u sum_a n_a^2 Q_aa (>= gamma_6 sum_ab
-// |n_a| |Q_ab| |n_b|, as |Q_ab| <= (Q_aa + Q_bb) / 2), hence >= 0 unless a
-// product overflows (inf - inf: NaN) or underflows (a tiny negative value).
-// Neither is clamped: the square root is then NaN or +inf and the plane
-// test (S1) below declines, as it must (a bound clamped to 0 would let it
-// separate overlapping ellipsoids). T: double, or a vector of doubles (one
-// pair per lane).
+// |n_a| |Q_ab| |n_b|, as |Q_ab| <= (Q_aa + Q_bb) / 2), plus a bound of its
+// underflow error, 16 (|n|_1 + 1) 2^-1074 (each of the 12 products loses
+// at most 2^-1075 when it underflows; those of a_i are multiplied by |n_i|).
+// The bound is >= 0 unless a product overflows (inf - inf: NaN). It is not
+// clamped: the square root is then NaN and the plane test (S1) below
+// declines, as it must (a bound clamped to 0 would let it separate
+// overlapping ellipsoids). T: double, or a vector of doubles (one pair per
+// lane).
 template <class T>
-PW85_ALWAYS_INLINE T support2_upper(T const q[6], T const n[3]) noexcept {
+PW85_ALWAYS_INLINE T support2_upper(T const q[6], T const n[3], T n_abs) noexcept {
   T const a0 = q[0] * n[0] + q[1] * n[1] + q[2] * n[2];
   T const a1 = q[1] * n[0] + q[3] * n[1] + q[4] * n[2];
   T const a2 = q[2] * n[0] + q[4] * n[1] + q[5] * n[2];
   T const h = n[0] * a0 + n[1] * a1 + n[2] * a2;
   T const diag = q[0] * n[0] * n[0] + q[3] * n[1] * n[1] + q[5] * n[2] * n[2];
-  return h + 32 * kU * diag;
+  return h + 32 * kU * diag + 16 * kMinSubnormal * (n_abs + 1.0);
 }
 
 // (S1): true (each lane: a true mask) only when the plane of normal n =
 // adj(qa + qb) r separates the ellipsoids (mu^2 >= 1) for every r12 within
-// r_error of r (each component), every rounding error bounded.
+// r_error of r (each component), every rounding and underflow error bounded
+// (any n gives a valid plane test, so only n^T r and the support values
+// need error bounds, not n itself).
 template <class T>
 PW85_ALWAYS_INLINE auto plane_separates(T const r[3], T const qa[6], T const qb[6],
                                         T r_error) noexcept {
@@ -175,8 +178,10 @@ PW85_ALWAYS_INLINE auto plane_separates(T const r[3], T const qa[6], T const qb[
   T const nr = n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
   T const nr_abs = lanes::vabs(n[0] * r[0]) + lanes::vabs(n[1] * r[1]) + lanes::vabs(n[2] * r[2]);
   T const n_abs = lanes::vabs(n[0]) + lanes::vabs(n[1]) + lanes::vabs(n[2]);
-  T const lhs = lanes::vabs(nr) - 8 * kU * nr_abs - n_abs * r_error * (1 + 8 * kU);
-  T const rhs = (lanes::vsqrt(support2_upper(qa, n)) + lanes::vsqrt(support2_upper(qb, n))) *
+  T const lhs = lanes::vabs(nr) - 8 * kU * nr_abs - n_abs * r_error * (1 + 8 * kU) -
+                4 * kMinSubnormal;
+  T const rhs = (lanes::vsqrt(support2_upper(qa, n, n_abs)) +
+                 lanes::vsqrt(support2_upper(qb, n, n_abs))) *
                 (1 + 8 * kU);
   return (lhs > 0.0) & (lhs >= rhs) & (lhs <= kMaxDouble);
 }

@@ -180,8 +180,11 @@ PW85_ALWAYS_INLINE void gather(double const *const p[W], VecD<W> out[N]) noexcep
   }
 #endif
 #endif
-  for (; i < N; ++i)
-    for (int l = 0; l < W; ++l) out[i][l] = p[l][i];
+  for (; i < N; ++i) {
+    VecD<W> v = {};
+    for (int l = 0; l < W; ++l) v[l] = p[l][i];
+    out[i] = v;
+  }
 }
 
 #if PW85_ISA_LEVELS
