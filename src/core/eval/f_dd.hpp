@@ -210,8 +210,8 @@ PW85_ALWAYS_INLINE PW85_TARGET_FMA double f_stationary_lanes(
   lanes::two_sum(v, shuffle<1, 0, 3, 2>(v, v), t, e3);  // lanes 0, 2: the sums
   err = err + (e1 + e2);
   err = (err + shuffle<1, 0, 3, 2>(err, err)) + e3;
-  double const sq1 = t[0] + err[0];
-  double const sq2 = t[2] + err[2];
+  Lanes4 const sq = t + err;  // lanes 0, 2: s^T Q1 s, s^T Q2 s
+  double const sq1 = sq[0], sq2 = sq[2];
   // r^T s: lanes 2, 3 of rr and r_2 s_2.
   DD const t2 = two_prod<true>(r[2], s[2]);
   DD const ra = two_sum(rr[2], rr[3]);
