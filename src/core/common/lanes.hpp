@@ -42,20 +42,15 @@ constexpr int kLanes = 4;
 constexpr long long kSign = static_cast<long long>(0x8000000000000000ULL);
 
 // Knuth's two_sum lane by lane (arith/dd.hpp): s = a + b rounded and
-// e = a + b - s, exactly; T = double or a vector type.
+// e = a + b - s, exactly; T = double or a vector type. s and e may be a
+// and b. (The vectors by reference: Clang rejects a 32-byte vector passed
+// by value to a function compiled without AVX, even inlined.)
 template <class T>
-PW85_ALWAYS_INLINE void two_sum(T a, T b, T &s, T &e) noexcept {
-  s = a + b;
-  T const bb = s - a;
-  e = (a - (s - bb)) + (b - bb);
-}
-
-// W doubles at p, any alignment.
-template <int W>
-PW85_ALWAYS_INLINE VecD<W> load_lanes(double const *p) noexcept {
-  VecD<W> v;
-  __builtin_memcpy(&v, p, sizeof v);
-  return v;
+PW85_ALWAYS_INLINE void two_sum(T const &a, T const &b, T &s, T &e) noexcept {
+  T const x = a, y = b;
+  s = x + y;
+  T const bb = s - x;
+  e = (x - (s - bb)) + (y - bb);
 }
 
 // Number of lanes of a vector type.
@@ -220,11 +215,13 @@ PW85_ALWAYS_INLINE PW85_TARGET_FMA Lanes4 fma(Lanes4 a, Lanes4 b, Lanes4 c) noex
 PW85_ALWAYS_INLINE PW85_TARGET_FMA Lanes4 fms(Lanes4 a, Lanes4 b, Lanes4 c) noexcept {
   return _mm256_fmsub_pd(a, b, c);
 }
-#endif
-
+// Four doubles at p, any alignment.
+PW85_ALWAYS_INLINE PW85_TARGET_FMA Lanes4 load4(double const *p) noexcept {
+  return _mm256_loadu_pd(p);
+}
 // Lane l of the result: lane I_l of (a, b), 0-3 from a, 4-7 from b.
 template <int I0, int I1, int I2, int I3>
-PW85_ALWAYS_INLINE VecD<4> shuffle(VecD<4> a, VecD<4> b) noexcept {
+PW85_ALWAYS_INLINE PW85_TARGET_FMA Lanes4 shuffle(Lanes4 a, Lanes4 b) noexcept {
 #if defined(__clang__)
   return __builtin_shufflevector(a, b, I0, I1, I2, I3);
 #else
@@ -232,6 +229,8 @@ PW85_ALWAYS_INLINE VecD<4> shuffle(VecD<4> a, VecD<4> b) noexcept {
   return __builtin_shuffle(a, b, Index4{I0, I1, I2, I3});
 #endif
 }
+#endif
+
 
 #if PW85_ISA_LEVELS
 // Eight lanes on x86-64-v4, for code inlined into PW85_TARGET_V4

@@ -190,8 +190,8 @@ PW85_ALWAYS_INLINE PW85_TARGET_FMA double f_stationary_lanes(
   Lanes4 const p = sa * sb, pl = fms(sa, sb, p);
   Lanes4 const rr = sc * sd, rl = fms(sc, sd, rr);
   Lanes4 const w{1.0, 2.0, 2.0, 1.0};  // exact scalings
-  Lanes4 const c1a = lanes::load_lanes<4>(q1.a) * w;
-  Lanes4 const c2a = lanes::load_lanes<4>(q2.a) * w;
+  Lanes4 const c1a = lanes::load4(q1.a) * w;
+  Lanes4 const c2a = lanes::load4(q2.a) * w;
   Lanes4 const c1b{2.0 * q1[4], q1[5], 0.0, 0.0};
   Lanes4 const c2b{2.0 * q2[4], q2[5], 0.0, 0.0};
   // c (p + pl) = h + l exactly up to the rounding of c pl (l = c p - h + c pl).
