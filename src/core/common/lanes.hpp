@@ -231,7 +231,6 @@ PW85_ALWAYS_INLINE PW85_TARGET_FMA Lanes4 shuffle(Lanes4 a, Lanes4 b) noexcept {
 }
 #endif
 
-
 #if PW85_ISA_LEVELS
 // Eight lanes on x86-64-v4, for code inlined into PW85_TARGET_V4
 // functions.

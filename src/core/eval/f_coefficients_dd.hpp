@@ -55,10 +55,9 @@ struct DD {
 
 // (a + b) exactly as h + e (Knuth's two_sum).
 PW85_V4_INLINE DD two_sum(Lanes8 a, Lanes8 b) {
-  Lanes8 const s = a + b;
-  Lanes8 const bb = s - a;
-  Lanes8 const e = (a - (s - bb)) + (b - bb);
-  return DD{s, e};
+  DD x;
+  lanes::two_sum(a, b, x.h, x.l);
+  return x;
 }
 
 // a b exactly as h + e.
