@@ -253,9 +253,10 @@ PW85_V4_INLINE Lanes8 fnma(Lanes8 a, Lanes8 b, Lanes8 c) noexcept {
 PW85_V4_INLINE Lanes8 permute(Lanes8 a, LaneIndex8 idx, Lanes8 b) noexcept {
   return _mm512_permutex2var_pd(a, reinterpret_cast<__m512i>(idx), b);
 }
-// Lane l of the result: lane idx[l] of v (idx 0-7).
-PW85_V4_INLINE Lanes8 permute(Lanes8 v, LaneIndex8 idx) noexcept {
-  return _mm512_permutexvar_pd(reinterpret_cast<__m512i>(idx), v);
+// In the lanes of k, lane idx[l] of v (idx 0-7); in the others, lane l
+// of src.
+PW85_V4_INLINE Lanes8 permute_into(Lanes8 src, LaneBits8 k, Lanes8 v, LaneIndex8 idx) noexcept {
+  return _mm512_mask_permutexvar_pd(src, k, reinterpret_cast<__m512i>(idx), v);
 }
 // Comparisons as bits (one compare into a mask register).
 PW85_V4_INLINE LaneBits8 gt_bits(Lanes8 a, Lanes8 b) noexcept {

@@ -128,6 +128,7 @@ PW85_V4_INLINE void kernel(double lh, double ll, Vec3 const &r, Sym3 const &q1, 
   using lanes::blend;
   using lanes::fma;
   using lanes::keep;
+  using lanes::permute_into;
   Lanes8 const a = lanes::load_first(q1.a, kSym);
   Lanes8 const b = lanes::load_first(q2.a, kSym);
   // 1 - lambda as nh + nl.
@@ -151,10 +152,9 @@ PW85_V4_INLINE void kernel(double lh, double ll, Vec3 const &r, Sym3 const &q1, 
   for (int j = 0; j < 3; ++j) {
     LaneIndex8 const ij = broadcast_index(j);
     Lanes8 const rj = keep(0x07, broadcast(r[j]));
-    DD const m{blend(0x08, lanes::permute(q.h, ij), rj), keep(0x08, lanes::permute(q.l, ij))};
+    DD const m{permute_into(rj, 0x08, q.h, ij), permute_into(Lanes8{}, 0x08, q.l, ij)};
     DD const p = mul_dd(perm_dd(c, sym_column(j)), m);
-    Lanes8 const pm =
-        idx_perm(ca, sym_column(j)) * blend(0x08, lanes::permute(qa, ij), vabs(rj));
+    Lanes8 const pm = idx_perm(ca, sym_column(j)) * permute_into(vabs(rj), 0x08, qa, ij);
     ub = j == 0 ? p : add(ub, p);
     uba = uba + pm;
   }
