@@ -38,12 +38,12 @@ namespace {
                                     contact_point_##name, refined_point_##name};
 
 #if PW85_ISA_STATIC_FMA
-PW85_DD_VARIANT(portable, , true, f_stationary_avx)
+PW85_DD_VARIANT(portable, , true, f_stationary_lanes)
 #else
 PW85_DD_VARIANT(portable, , false, f_stationary_impl<false>)
 #endif
 #if PW85_ISA_FMA
-PW85_DD_VARIANT(fma, PW85_TARGET_FMA, true, f_stationary_avx)
+PW85_DD_VARIANT(fma, PW85_TARGET_FMA, true, f_stationary_lanes)
 #endif
 
 }  // namespace
