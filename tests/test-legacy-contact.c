@@ -39,7 +39,7 @@ static const double max_flagged_share[2][NUM_CLASSES] = {
 };
 
 /* Known failures: wrong by more than WRONG_RTOL with PW85_OK. Each entry is
- * documented in docs/legacy.md ("Known failures"). */
+ * documented in docs/legacy.md ("Where accuracy is lost, and why"). */
 typedef struct {
   const char *group;
   int method;

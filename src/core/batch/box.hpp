@@ -1,5 +1,5 @@
 // The periodic box of the scene calls and the minimum image of a centre
-// difference (docs/batch.md, "Periodic boxes").
+// difference (docs/batch.md, "Periodic box and minimum image").
 //
 // Box {Lx, Ly, Lz, xy, xz, yz} (HOOMD/GSD convention): lattice vectors
 // a1 = (Lx, 0, 0), a2 = (xy Ly, Ly, 0), a3 = (xz Lz, yz Lz, Lz), the tilt

@@ -14,7 +14,10 @@
 //  - v4:       x86-64-v4 (AVX-512 F/BW/CD/DQ/VL).
 // fma exists with GCC or Clang on x86 when the build does not already target
 // FMA (then the portable body is the FMA body: kStaticFma); v3 and v4 exist
-// with GCC >= 12 on x86-64. The meson option isa_dispatch=false
+// with GCC >= 12 on x86-64 when the build does not already target AVX2
+// (-march=haswell, -march=native, ...: a body compiled for such a target
+// cannot be inlined into a function whose arch= attribute lacks some of
+// its features, and the portable body is then compiled for that target). The meson option isa_dispatch=false
 // (PW85_NO_ISA_DISPATCH) builds the portable variant only.
 #pragma once
 
@@ -34,7 +37,7 @@
 #endif
 
 #if !defined(PW85_NO_ISA_DISPATCH) && defined(__x86_64__) && defined(__GNUC__) && \
-    !defined(__clang__) && __GNUC__ >= 12
+    !defined(__clang__) && __GNUC__ >= 12 && !defined(__AVX2__)
 #define PW85_ISA_LEVELS 1
 #define PW85_TARGET_V3 __attribute__((target("arch=x86-64-v3")))
 #define PW85_TARGET_V4 __attribute__((target("arch=x86-64-v4")))
