@@ -494,7 +494,7 @@ extern "C" int LLVMFuzzerInitialize(int *, char ***) {
 
 extern "C" int LLVMFuzzerTestOneInput(std::uint8_t const *data, std::size_t size) {
   unsigned char buf[2 + 34 * 8] = {};
-  std::memcpy(buf, data, size < sizeof buf ? size : sizeof buf);
+  if (size > 0) std::memcpy(buf, data, size < sizeof buf ? size : sizeof buf);
   unsigned const mode = buf[0];
   double v[34];
   std::memcpy(v, buf + 2, sizeof v);
