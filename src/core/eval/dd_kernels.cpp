@@ -9,13 +9,43 @@ namespace pw85 {
 
 namespace {
 
+// The kernels with Dekker's product (F false) fall back on the fused
+// multiply-add's bodies (std::fma, correctly rounded in software where the
+// CPU has no instruction) where they fail: Dekker's product splits its
+// factors by a product with 2^27 + 1 (arith/dd.hpp), which overflows for
+// factors above 2^996, where the fused multiply-add's product is still
+// exact. The products s_i s_j and s^T D s of f' reach that far where
+// Q(lambda) is tiny beside r (a maximiser near 0 or 1 of matrices far
+// apart, one 2^-900 of the other). With the fallback, an evaluation fails
+// on every CPU where it fails with the fused multiply-add (a pivot not
+// positive, a value beyond the range of double), with the same result
+// there, and not where only the splitting overflows. It runs only on a
+// failure, so its cost (a library call per product) never reaches the
+// evaluations that succeed.
+template <bool F>
+PW85_ALWAYS_INLINE bool f_eval_kernel(double lambda, Vec3 const &r, Sym3 const &q1,
+                                      Sym3 const &q2, FEvalDD &out) noexcept {
+  if (f_eval_dd_impl<F>(lambda, r, q1, q2, out)) return true;
+  if constexpr (F) return false;
+  return f_eval_dd_impl<true>(lambda, r, q1, q2, out);
+}
+
+template <bool F>
+PW85_ALWAYS_INLINE bool contact_point_kernel(double lambda, Vec3 const &r, Sym3 const &q1,
+                                             Sym3 const &q2, Vec3 &x0, Vec3 &n,
+                                             double &df) noexcept {
+  if (contact_point_dd_impl<F>(lambda, r, q1, q2, x0, n, df)) return true;
+  if constexpr (F) return false;
+  return contact_point_dd_impl<true>(lambda, r, q1, q2, x0, n, df);
+}
+
 // The kernels of one variant, compiled with the target attribute TARGET from
 // the bodies of f_dd.hpp with Dekker's product (FMA false) or the fused
 // multiply-add (FMA true); STATIONARY is f_stationary's body.
 #define PW85_DD_VARIANT(name, TARGET, FMA, STATIONARY)                                                    \
   TARGET bool f_eval_##name(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,    \
                             FEvalDD &out) noexcept {                                          \
-    return f_eval_dd_impl<FMA>(lambda, r, q1, q2, out);                                       \
+    return f_eval_kernel<FMA>(lambda, r, q1, q2, out);                                        \
   }                                                                                           \
   TARGET double f_stationary_##name(double lambda, Vec3 const &r, Sym3 const &q1,            \
                                     Sym3 const &q2, Vec3 const &s) noexcept {                 \
@@ -27,7 +57,7 @@ namespace {
   }                                                                                           \
   TARGET bool contact_point_##name(double lambda, Vec3 const &r, Sym3 const &q1,             \
                                    Sym3 const &q2, Vec3 &x0, Vec3 &n, double &df) noexcept {  \
-    return contact_point_dd_impl<FMA>(lambda, r, q1, q2, x0, n, df);                          \
+    return contact_point_kernel<FMA>(lambda, r, q1, q2, x0, n, df);                           \
   }                                                                                           \
   TARGET double refined_point_##name(double lambda, Sym3 const &q1, Sym3 const &q2,          \
                                      Vec3 const &s, Vec3 const &delta, Vec3 &x0,              \
