@@ -2,6 +2,8 @@
 // and the calls that run the variant of this CPU.
 #include "eval/dd_kernels.hpp"
 
+#include <cmath>
+
 #include "dispatch/kernels.hpp"
 #include "eval/f_dd.hpp"
 
@@ -11,7 +13,8 @@ namespace {
 
 // The kernels with Dekker's product (F false) fall back on the fused
 // multiply-add's bodies (std::fma, correctly rounded in software where the
-// CPU has no instruction) where they fail: Dekker's product splits its
+// CPU has no instruction) where they fail (false, or a value not finite):
+// Dekker's product splits its
 // factors by a product with 2^27 + 1 (arith/dd.hpp), which overflows for
 // factors above 2^996, where the fused multiply-add's product is still
 // exact. The products s_i s_j and s^T D s of f' reach that far where
@@ -39,6 +42,35 @@ PW85_ALWAYS_INLINE bool contact_point_kernel(double lambda, Vec3 const &r, Sym3 
   return contact_point_dd_impl<true>(lambda, r, q1, q2, x0, n, df);
 }
 
+template <bool F>
+PW85_ALWAYS_INLINE Vec3 residual_kernel(double lambda, Vec3 const &r, Sym3 const &q1,
+                                        Sym3 const &q2, Vec3 const &s) noexcept {
+  Vec3 const rho = residual_dd_impl<F>(lambda, r, q1, q2, s);
+  if constexpr (F) return rho;
+  if (std::isfinite(rho[0]) && std::isfinite(rho[1]) && std::isfinite(rho[2])) return rho;
+  return residual_dd_impl<true>(lambda, r, q1, q2, s);
+}
+
+template <bool F>
+PW85_ALWAYS_INLINE double refined_point_kernel(double lambda, Sym3 const &q1, Sym3 const &q2,
+                                               Vec3 const &s, Vec3 const &delta, Vec3 &x0,
+                                               Vec3 &q2s) noexcept {
+  double const df = refined_point_impl<F>(lambda, q1, q2, s, delta, x0, q2s);
+  if constexpr (F) return df;
+  if (std::isfinite(df) && std::isfinite(x0[0]) && std::isfinite(x0[1]) &&
+      std::isfinite(x0[2]) && std::isfinite(q2s[0]) && std::isfinite(q2s[1]) &&
+      std::isfinite(q2s[2]))
+    return df;
+  return refined_point_impl<true>(lambda, q1, q2, s, delta, x0, q2s);
+}
+
+// f_stationary with Dekker's product.
+[[maybe_unused]] double f_stationary_dekker(double lambda, Vec3 const &r, Sym3 const &q1,
+                                            Sym3 const &q2, Vec3 const &s) noexcept {
+  double const f = f_stationary_impl<false>(lambda, r, q1, q2, s);
+  return std::isfinite(f) ? f : f_stationary_impl<true>(lambda, r, q1, q2, s);
+}
+
 // The kernels of one variant, compiled with the target attribute TARGET from
 // the bodies of f_dd.hpp with Dekker's product (FMA false) or the fused
 // multiply-add (FMA true); STATIONARY is f_stationary's body.
@@ -53,7 +85,7 @@ PW85_ALWAYS_INLINE bool contact_point_kernel(double lambda, Vec3 const &r, Sym3 
   }                                                                                           \
   TARGET Vec3 residual_##name(double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2,  \
                               Vec3 const &s) noexcept {                                       \
-    return residual_dd_impl<FMA>(lambda, r, q1, q2, s);                                       \
+    return residual_kernel<FMA>(lambda, r, q1, q2, s);                                        \
   }                                                                                           \
   TARGET bool contact_point_##name(double lambda, Vec3 const &r, Sym3 const &q1,             \
                                    Sym3 const &q2, Vec3 &x0, Vec3 &n, double &df) noexcept {  \
@@ -62,7 +94,7 @@ PW85_ALWAYS_INLINE bool contact_point_kernel(double lambda, Vec3 const &r, Sym3 
   TARGET double refined_point_##name(double lambda, Sym3 const &q1, Sym3 const &q2,          \
                                      Vec3 const &s, Vec3 const &delta, Vec3 &x0,              \
                                      Vec3 &q2s) noexcept {                                    \
-    return refined_point_impl<FMA>(lambda, q1, q2, s, delta, x0, q2s);                        \
+    return refined_point_kernel<FMA>(lambda, q1, q2, s, delta, x0, q2s);                      \
   }                                                                                           \
   constexpr DdKernels kDd_##name = {f_eval_##name, f_stationary_##name, residual_##name,     \
                                     contact_point_##name, refined_point_##name};
@@ -70,7 +102,7 @@ PW85_ALWAYS_INLINE bool contact_point_kernel(double lambda, Vec3 const &r, Sym3 
 #if PW85_ISA_STATIC_FMA
 PW85_DD_VARIANT(portable, , true, f_stationary_avx)
 #else
-PW85_DD_VARIANT(portable, , false, f_stationary_impl<false>)
+PW85_DD_VARIANT(portable, , false, f_stationary_dekker)
 #endif
 #if PW85_ISA_FMA
 PW85_DD_VARIANT(fma, PW85_TARGET_FMA, true, f_stationary_avx)
