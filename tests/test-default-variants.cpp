@@ -30,6 +30,7 @@
  * closest approach along r12, |r12| / mu, 4.05673493288534178325134167097e67. */
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 
 #include <glib.h>
 
@@ -65,32 +66,35 @@ void rescaled(pw85::Vec3 &r, pw85::Sym3 &q1, pw85::Sym3 &q2) {
   pw85::scale_pair(r0, a, b, kEr, kEq, r, q1, q2);
 }
 
-pw85::Variant const kVariants[] = {pw85::Variant::portable, pw85::Variant::fma,
-                                   pw85::Variant::v3, pw85::Variant::v4};
-
-void test_dd_evaluation(void) {
+// f(variant's table, r, q1, q2) for every variant the CPU runs, on the
+// rescaled pair.
+template <class Check>
+void each_variant(Check check) {
   pw85::Vec3 r;
   pw85::Sym3 q1, q2;
   rescaled(r, q1, q2);
-  for (pw85::Variant v : kVariants) {
-    if (!pw85::variant_runs(v)) continue;
+  for (pw85::Variant v : {pw85::Variant::portable, pw85::Variant::fma, pw85::Variant::v3,
+                          pw85::Variant::v4})
+    if (pw85::variant_runs(v)) check(pw85::kernels_of(v), r, q1, q2);
+}
+
+void test_dd_evaluation(void) {
+  each_variant([](pw85::Kernels const &k, pw85::Vec3 const &r, pw85::Sym3 const &q1,
+                  pw85::Sym3 const &q2) {
     pw85::FEvalDD fd;
-    g_assert_true(pw85::kernels_of(v).dd->f_eval(kLambda, r, q1, q2, fd));
+    g_assert_true(k.dd->f_eval(kLambda, r, q1, q2, fd));
     near(std::ldexp(fd.f, -kEf), kMu2, "f_eval");
-  }
+  });
 }
 
 void test_default_kernel(void) {
-  pw85::Vec3 r;
-  pw85::Sym3 q1, q2;
-  rescaled(r, q1, q2);
-  for (pw85::Variant v : kVariants) {
-    if (!pw85::variant_runs(v)) continue;
+  each_variant([](pw85::Kernels const &k, pw85::Vec3 const &r, pw85::Sym3 const &q1,
+                  pw85::Sym3 const &q2) {
     pw85::MethodResult res;
     res.iterations = 0;
-    g_assert_cmpint(pw85::kernels_of(v).contact_default->contact(r, q1, q2, res), ==, PW85_OK);
+    g_assert_cmpint(k.contact_default->contact(r, q1, q2, res), ==, PW85_OK);
     near(std::ldexp(res.mu2, -kEf), kMu2, "contact_default");
-  }
+  });
 }
 
 void test_public_calls(void) {
