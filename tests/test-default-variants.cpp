@@ -66,7 +66,7 @@ void rescaled(pw85::Vec3 &r, pw85::Sym3 &q1, pw85::Sym3 &q2) {
   pw85::scale_pair(r0, a, b, kEr, kEq, r, q1, q2);
 }
 
-// f(variant's table, r, q1, q2) for every variant the CPU runs, on the
+// check(variant's table, r, q1, q2) for every variant the CPU runs, on the
 // rescaled pair.
 template <class Check>
 void each_variant(Check check) {
