@@ -41,7 +41,7 @@ ACCURACY = {"DEFAULT": 1e-14, "BRENT": 1e-10, "NEWTON": 1e-12, "RATIONAL": 1e-12
 CONTACT_TIME_TOL = 1e-11  # of t_max = 1 (calls.c)
 # Known status differences across variants, not fixed yet (docs/stability.md,
 # "Across CPUs"): (call number, function) of the default corpus (seed 1).
-# They are reported, not failed; any other difference fails.
+# They are reported, not failed; any other difference fails. None at present.
 KNOWN_DIFFERENCES = set()
 
 
