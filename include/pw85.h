@@ -50,7 +50,8 @@
  * another CPU, both within the documented accuracy of the method. This
  * concerns pw85_contact_function_method() and pw85_dca() with
  * PW85_METHOD_DEFAULT, pw85_contact() and the batch calls built on them
- * (pw85_contact_batch(), pw85_contact_pairs(), ...). Likewise,
+ * (pw85_contact_batch(), pw85_contact_pairs(), ...), the derivatives, and
+ * pw85_contact_time(), whose *t stays within its certified bracket. Likewise,
  * the double-double evaluations that the contact-function methods and
  * pw85_contact() use in their last steps run with a fused multiply-add on
  * x86 CPUs that have one, and may differ by an ulp from a CPU without.
@@ -833,7 +834,10 @@ PW85_API int pw85_scene_contact_derivatives_ex(long long n, double const *centre
 /* ---- Time of first contact ----------------------------------------------
  * docs/contact_time.md. */
 
-/* Budget of contact-function evaluations of one pw85_contact_time() call. */
+/* Budget of contact-function evaluations of one pw85_contact_time() call:
+ * no sample of mu^2(t) starts once it is spent. A sample takes one to three
+ * evaluations (DEFAULT, an enclosure, the derivatives), so
+ * pw85_contact_time_ex() reports at most PW85_CONTACT_TIME_MAX_EVAL + 2. */
 #define PW85_CONTACT_TIME_MAX_EVAL 100000
 
 /* First contact time of two moving ellipsoids. The centre offset moves as

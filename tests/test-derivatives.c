@@ -759,6 +759,45 @@ static void test_matrix_ratio(void) {
   g_assert_cmpint(checked, >, 350);
 }
 
+/* An ellipsoid far longer than r12: q1 = diag(2^k, 1, 1) (a needle along x
+ * of half-length 2^(k/2)), q2 = I. For 2^k beyond 2^(2 * 53), mu2 =
+ * (y^2 + z^2) / 4 and lambda = 1/2 in double, d_r12 = (~0, y/2, z/2):
+ * PW85_OK wherever DEFAULT answers (k up to 560), every field finite. Then
+ * the pair libFuzzer found (tests/fuzz/corpus/derivatives-long-needle)
+ * against mpmath at 400 digits (maximiser of f by bisection on f'). */
+static void test_long_needle(void) {
+  double const r[3] = {0x1.6666666666666p-1, -0x1.6666666666666p-1, 0x1.199999999999ap+0};
+  double const q2[6] = {1, 0, 0, 1, 0, 1};
+  double const mu2 = (r[1] * r[1] + r[2] * r[2]) / 4;
+  int checked = 0;
+  for (int k = 120; k <= 600; k++) {
+    double const q1[6] = {ldexp(1.0, k), 0, 0, 1, 0, 1};
+    pw85_result res;
+    if (pw85_contact_function_method(r, q1, q2, PW85_METHOD_DEFAULT, &res) != PW85_OK) continue;
+    pw85_derivatives_t d;
+    int const s = pw85_contact_derivatives(r, q1, q2, &d);
+    if (s != PW85_OK) g_test_message("k = %d: status %d", k, s);
+    g_assert_cmpint(s, ==, PW85_OK);
+    g_assert_true(check_forces_pair(r, q1, q2, s, &d));
+    g_assert_cmpfloat(rel_error(d.mu2, mu2), <=, 4 * DBL_EPSILON);
+    g_assert_cmpfloat(fabs(d.lambda - 0.5), <=, 4 * DBL_EPSILON);
+    g_assert_cmpfloat(fabs(d.d_r12[0]), <=, 4 * DBL_EPSILON);
+    for (int i = 1; i < 3; i++) g_assert_cmpfloat(rel_error(d.d_r12[i], r[i] / 2), <=, 4 * DBL_EPSILON);
+    checked++;
+  }
+  g_assert_cmpint(checked, >=, 400);
+  double const fr[3] = {0x1.6666666666666p-1, -0x1.6666666666666p-1, 0x1.199999999999ap+0};
+  double const f1[6] = {0x1.9p+518, 0, -0x1p-863, 0x1.9p+6, 0, 0x1.47ae147ae147bp-7};
+  double const f2[6] = {0x1.9p+4, 0, 0, 0x1p-2, 0, 0x1.00000002fp-2};
+  pw85_derivatives_t d;
+  g_assert_cmpint(pw85_contact_derivatives(fr, f1, f2, &d), ==, PW85_OK);
+  g_assert_cmpfloat(rel_error(d.mu2, 3.3619276153448344061), <=, 4 * DBL_EPSILON);
+  g_assert_cmpfloat(rel_error(d.lambda, 0.16676786861612571565), <=, 1e-14);
+  g_assert_cmpfloat(rel_error(d.d_r12[1], -0.0023335825190758001585), <=, 1e-14);
+  g_assert_cmpfloat(rel_error(d.d_r12[2], 6.1111106572057410995), <=, 1e-14);
+  g_assert_cmpfloat(fabs(d.d_r12[0]), <=, 1e-150);
+}
+
 /* Q1 nearly singular (smallest eigenvalue ~4e-18), r12 along its thin
  * direction, lambda ~3.5e-9: f' computed from a solve refined to ~2^-60 |s|
  * is too noisy for the Newton steps to settle (docs/derivatives.md, (E7)),
@@ -793,6 +832,7 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact_derivatives/far_pairs", test_far_pairs);
   g_test_add_func("/pw85_contact_derivatives/matrix_ratio", test_matrix_ratio);
   g_test_add_func("/pw85_contact_derivatives/thin-direction", test_thin_direction);
+  g_test_add_func("/pw85_contact_derivatives/long-needle", test_long_needle);
   g_test_add_func("/pw85_contact_derivatives/bad-input", test_bad_input);
   g_test_add_func("/pw85_contact_derivatives/batch/forms", test_batch);
   g_test_add_func("/pw85_contact_derivatives/batch/lanes", test_batch_lanes);

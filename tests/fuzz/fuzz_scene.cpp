@@ -423,8 +423,9 @@ void check_derivatives(Input const &in) {
   }
   // The derivatives answer where DEFAULT does, unless a field leaves the
   // range of double or min(lambda, 1 - lambda) is below about 1e-15
-  // (pw85.h). The fields scale as mu2 times powers of 1/|r12| and of the
-  // matrix entries: far inside the range when those all are.
+  // (pw85.h). The fields scale as mu2 times 1/|r12| (d_r12), 1/|r12|^2
+  // (hess_r12) and 1/q (d_q1, d_q2): far inside the range when those
+  // all are.
   pw85_result res;
   int const sd = pw85_contact_function_method(in.r, in.q1, in.q2, PW85_METHOD_DEFAULT, &res);
   if (sd == PW85_OK && !is_zero(in.r) && s == PW85_ERR_NO_CONVERGENCE) {
@@ -437,7 +438,8 @@ void check_derivatives(Input const &in) {
     double const r = std::sqrt(in.r[0] * in.r[0] + in.r[1] * in.r[1] + in.r[2] * in.r[2]);
     double const lo = 0x1p-600, hi = 0x1p600;
     bool const moderate = res.mu2 > lo && res.mu2 < hi && r > lo && r < hi && qmin > lo &&
-                          qmax < hi && std::fmin(res.lambda, 1.0 - res.lambda) > 1e-12;
+                          qmax < hi && res.mu2 / (r * r) < hi && res.mu2 / qmin < hi &&
+                          std::fmin(res.lambda, 1.0 - res.lambda) > 1e-12;
     CHECK(kAnswers, !moderate, fn, s);
   }
 }

@@ -1,14 +1,18 @@
 // Vectors of doubles (GCC vector extensions) and their lane-by-lane
 // helpers, for the loops that process several pairs at once
 // (overlap/filters.hpp, contact/default.hpp; docs/batch.md,
-// "Throughput"). No operation mixes lanes.
+// "Throughput") and for the kernels that hold one pair's entries in the
+// lanes of a vector (derivatives/adjugate.hpp, eval/f_coefficients_dd.hpp,
+// eval/f_dd.hpp). The operations the vector extensions do not spell (fused
+// multiply-add, two-source permutes, mask registers, masked loads and
+// stores) are the small functions below: the library's only intrinsics.
 #pragma once
 
 #include <cmath>
 
 #include "common/isa.hpp"
 
-#if PW85_ISA_LEVELS
+#if PW85_ISA_LEVELS || PW85_ISA_STATIC_FMA || PW85_ISA_FMA
 #include <immintrin.h>
 #endif
 
@@ -36,6 +40,18 @@ using VecD = typename Width<W>::type;
 constexpr int kLanes = 4;
 
 constexpr long long kSign = static_cast<long long>(0x8000000000000000ULL);
+
+// Knuth's two_sum lane by lane (arith/dd.hpp): s = a + b rounded and
+// e = a + b - s, exactly; T = double or a vector type. s and e may be a
+// and b. (The vectors by reference: Clang rejects a 32-byte vector passed
+// by value to a function compiled without AVX, even inlined.)
+template <class T>
+PW85_ALWAYS_INLINE void two_sum(T const &a, T const &b, T &s, T &e) noexcept {
+  T const x = a, y = b;
+  s = x + y;
+  T const bb = s - x;
+  e = (x - (s - bb)) + (y - bb);
+}
 
 // Number of lanes of a vector type.
 template <class T>
@@ -187,10 +203,37 @@ PW85_ALWAYS_INLINE void gather(double const *const p[W], VecD<W> out[N]) noexcep
   }
 }
 
+#if PW85_ISA_STATIC_FMA || PW85_ISA_FMA
+// Four lanes with the fused multiply-add, for code inlined into
+// PW85_TARGET_FMA functions (or any code of a build that targets FMA).
+typedef VecD<4> Lanes4;
+
+// a b + c and a b - c, each with one rounding.
+PW85_ALWAYS_INLINE PW85_TARGET_FMA Lanes4 fma(Lanes4 a, Lanes4 b, Lanes4 c) noexcept {
+  return _mm256_fmadd_pd(a, b, c);
+}
+PW85_ALWAYS_INLINE PW85_TARGET_FMA Lanes4 fms(Lanes4 a, Lanes4 b, Lanes4 c) noexcept {
+  return _mm256_fmsub_pd(a, b, c);
+}
+// Four doubles at p, any alignment.
+PW85_ALWAYS_INLINE PW85_TARGET_FMA Lanes4 load4(double const *p) noexcept {
+  return _mm256_loadu_pd(p);
+}
+// Lane l of the result: lane I_l of (a, b), 0-3 from a, 4-7 from b.
+template <int I0, int I1, int I2, int I3>
+PW85_ALWAYS_INLINE PW85_TARGET_FMA Lanes4 shuffle(Lanes4 a, Lanes4 b) noexcept {
+#if defined(__clang__)
+  return __builtin_shufflevector(a, b, I0, I1, I2, I3);
+#else
+  typedef long long Index4 __attribute__((vector_size(32)));
+  return __builtin_shuffle(a, b, Index4{I0, I1, I2, I3});
+#endif
+}
+#endif
+
 #if PW85_ISA_LEVELS
-// Eight lanes on x86-64-v4: the operations GCC's vector extensions do not
-// spell, for code inlined into PW85_TARGET_V4 functions (the only place of
-// the library's AVX-512 intrinsics besides derivatives/adjugate.hpp).
+// Eight lanes on x86-64-v4, for code inlined into PW85_TARGET_V4
+// functions.
 typedef VecD<8> Lanes8;
 typedef long long LaneIndex8 __attribute__((vector_size(64)));
 typedef unsigned char LaneBits8;  // bit l: lane l
@@ -202,9 +245,18 @@ PW85_V4_INLINE Lanes8 fma(Lanes8 a, Lanes8 b, Lanes8 c) noexcept {
 PW85_V4_INLINE Lanes8 fms(Lanes8 a, Lanes8 b, Lanes8 c) noexcept {
   return _mm512_fmsub_pd(a, b, c);
 }
+// c - a b, one rounding.
+PW85_V4_INLINE Lanes8 fnma(Lanes8 a, Lanes8 b, Lanes8 c) noexcept {
+  return _mm512_fnmadd_pd(a, b, c);
+}
 // Lane l of the result: lane idx[l] of (a, b), 0-7 from a, 8-15 from b.
 PW85_V4_INLINE Lanes8 permute(Lanes8 a, LaneIndex8 idx, Lanes8 b) noexcept {
   return _mm512_permutex2var_pd(a, reinterpret_cast<__m512i>(idx), b);
+}
+// In the lanes of k, lane idx[l] of v (idx 0-7); in the others, lane l
+// of src.
+PW85_V4_INLINE Lanes8 permute_into(Lanes8 src, LaneBits8 k, Lanes8 v, LaneIndex8 idx) noexcept {
+  return _mm512_mask_permutexvar_pd(src, k, reinterpret_cast<__m512i>(idx), v);
 }
 // Comparisons as bits (one compare into a mask register).
 PW85_V4_INLINE LaneBits8 gt_bits(Lanes8 a, Lanes8 b) noexcept {
@@ -212,6 +264,9 @@ PW85_V4_INLINE LaneBits8 gt_bits(Lanes8 a, Lanes8 b) noexcept {
 }
 PW85_V4_INLINE LaneBits8 le_bits(Lanes8 a, Lanes8 b) noexcept {
   return _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ);
+}
+PW85_V4_INLINE LaneBits8 eq_bits(Lanes8 a, Lanes8 b) noexcept {
+  return _mm512_cmp_pd_mask(a, b, _CMP_EQ_OQ);
 }
 // The lanes of a mask as bits, and back.
 PW85_V4_INLINE LaneBits8 bits(UMaskOf<Lanes8> m) noexcept {
@@ -231,9 +286,15 @@ PW85_V4_INLINE LaneIndex8 blend(LaneBits8 k, LaneIndex8 a, LaneIndex8 b) noexcep
   return reinterpret_cast<LaneIndex8>(
       _mm512_mask_blend_epi64(k, reinterpret_cast<__m512i>(b), reinterpret_cast<__m512i>(a)));
 }
+// k ? v : 0 lane by lane, k as bits.
+PW85_V4_INLINE Lanes8 keep(LaneBits8 k, Lanes8 v) noexcept { return _mm512_maskz_mov_pd(k, v); }
 // The first n doubles at p in lanes 0 .. n - 1, zeros above (reads n only).
 PW85_V4_INLINE Lanes8 load_first(double const *p, int n) noexcept {
   return _mm512_maskz_loadu_pd(static_cast<__mmask8>((1u << n) - 1u), p);
+}
+// Lanes 0 .. n - 1 of v to the n doubles at p (writes n only).
+PW85_V4_INLINE void store_first(double *p, int n, Lanes8 v) noexcept {
+  _mm512_mask_storeu_pd(p, static_cast<__mmask8>((1u << n) - 1u), v);
 }
 PW85_V4_INLINE void store(double *p, Lanes8 v) noexcept { _mm512_storeu_pd(p, v); }
 PW85_V4_INLINE Lanes8 load(double const *p) noexcept { return _mm512_loadu_pd(p); }

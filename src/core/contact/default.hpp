@@ -553,11 +553,11 @@ constexpr int kIs[kSym] = {4, 1, 2, 2, 0, 1}, kIt[kSym] = {4, 5, 3, 2, 4, 1};
 constexpr int kRi[kSym] = {0, 0, 0, 1, 1, 2}, kRj[kSym] = {0, 1, 2, 1, 2, 2};
 constexpr double kW[kSym] = {1.0, 2.0, 2.0, 1.0, 2.0, 1.0};
 
-// The terms (rdd::terms) of adjugate entries k and k + 1, added: round 1 of
+// The terms (dd_lanes::terms) of adjugate entries k and k + 1, added: round 1 of
 // the tree.
 PW85_V4_INLINE void pair_sum(Vec3L<W> const &r, SymL<W> const &a, SymL<W> const &b, int k,
-                             rdd::DD v[7], V8 m[7]) noexcept {
-  using namespace rdd;
+                             dd_lanes::DD v[7], V8 m[7]) noexcept {
+  using namespace dd_lanes;
   Terms t[2];
   for (int i = 0; i < 2; ++i) {
     int const e = k + i;
@@ -581,7 +581,7 @@ PW85_V4_INLINE void pair_sum(Vec3L<W> const &r, SymL<W> const &a, SymL<W> const 
 // Returns the lanes where every coefficient passes its test.
 PW85_V4_INLINE M8 coefficients(Vec3L<W> const &r, SymL<W> const &a, SymL<W> const &b,
                               CoefL &out) noexcept {
-  using namespace rdd;
+  using namespace dd_lanes;
   // Rounds 2 and 3, entry pair by entry pair.
   DD s0123[7], v[7];
   V8 m0123[7], m[7];
@@ -700,7 +700,7 @@ PW85_V4_INLINE V8 grid_start(Vec3L<W> const &r, SymL<W> const &q1, SymL<W> const
 // The coefficient step for kDefaultLanes pairs at once (docs/batch.md,
 // "Throughput"), pair l in lane l of each vector: the screen of the entry
 // (screen.hpp, screen_contact_lanes), the seven coefficients (M12)-(M13)
-// in double-double (coefficients below: rdd::terms per adjugate entry, then
+// in double-double (coefficients below: dd_lanes::terms per adjugate entry, then
 // the sums over the entries; det_precise for d0, d3 in lanes where their
 // bound fails), the grid start (M24) (grid_start below; (M22) for a lane
 // whose root is off the grid), and coefficient_iterate (halley_step.hpp).

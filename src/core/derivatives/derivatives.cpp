@@ -153,8 +153,17 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Deriva
   }
   Derivatives s;
   MethodResult res;
-  Status const status =
+  Status status =
       derivatives_dispatch(solve_default(rs, a, b, false, res), res, rs, a, b, fields, s);
+  if (status == kNoConvergence && t != 0) {
+    // Scaling r alone moves mu2 by 2^-2t; where the matrices' entries
+    // span a wide range (an ellipsoid far longer than r12), a field of that
+    // problem can leave the range of double although the pair's own fields
+    // are moderate: solve with r scaled with the matrices only.
+    scale_by_power_of_two(rs.x, kDim, t);
+    t = 0;
+    status = derivatives_dispatch(solve_default(rs, a, b, false, res), res, rs, a, b, fields, s);
+  }
   if (status != kOk && status != kInaccurate) {
     d = s;  // all NaN
     return status;

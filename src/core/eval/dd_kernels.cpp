@@ -137,12 +137,12 @@ PW85_ALWAYS_INLINE double f_stationary_dekker(double lambda, Vec3 const &r, Sym3
                                     contact_point_##name, refined_point_##name};
 
 #if PW85_ISA_STATIC_FMA
-PW85_DD_VARIANT(portable, , true, f_stationary_avx)
+PW85_DD_VARIANT(portable, , true, f_stationary_lanes)
 #else
 PW85_DD_VARIANT(portable, , false, f_stationary_dekker)
 #endif
 #if PW85_ISA_FMA
-PW85_DD_VARIANT(fma, PW85_TARGET_FMA, true, f_stationary_avx)
+PW85_DD_VARIANT(fma, PW85_TARGET_FMA, true, f_stationary_lanes)
 #endif
 
 }  // namespace

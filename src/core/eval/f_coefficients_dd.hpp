@@ -40,7 +40,11 @@ struct CoefficientsDD {
 };
 
 #if PW85_ISA_LEVELS
-namespace rdd {
+// Double-double arithmetic lane by lane on eight-lane vectors (x86-64-v4):
+// each lane holds one value h + l (arith/dd.hpp for one double-double), and
+// the terms of the coefficients below; also the adjugate kernel of
+// derivatives/adjugate.hpp.
+namespace dd_lanes {
 
 using lanes::Lanes8;
 using lanes::LaneIndex8;
@@ -51,10 +55,9 @@ struct DD {
 
 // (a + b) exactly as h + e (Knuth's two_sum).
 PW85_V4_INLINE DD two_sum(Lanes8 a, Lanes8 b) {
-  Lanes8 const s = a + b;
-  Lanes8 const bb = s - a;
-  Lanes8 const e = (a - (s - bb)) + (b - bb);
-  return DD{s, e};
+  DD x;
+  lanes::two_sum(a, b, x.h, x.l);
+  return x;
 }
 
 // a b exactly as h + e.
@@ -182,18 +185,10 @@ PW85_V4_INLINE Lanes8 finish(DD t, Lanes8 mt, Lanes8 ts, lanes::LaneBits8 &ok) {
 PW85_V4_INLINE double fms(double a, double b, double p) { return std::fma(a, b, -p); }
 PW85_V4_INLINE Lanes8 fms(Lanes8 a, Lanes8 b, Lanes8 p) { return lanes::fms(a, b, p); }
 
-// Knuth's two_sum (as above) for T = double or T = Lanes8.
-template <class T>
-PW85_V4_INLINE void two_sum_t(T a, T b, T &s, T &e) {
-  s = a + b;
-  T const bb = s - a;
-  e = (a - (s - bb)) + (b - bb);
-}
-
 // Terms of the precise determinant below: n = 20 doubles.
 constexpr int kDetTerms = 20;
 
-}  // namespace rdd
+}  // namespace dd_lanes
 
 // det Q for d0 = det Q1 or d3 = det Q2 (eq. (M13)) where the double-double
 // sum fails its bound (cancellation beyond 2^45 of the terms: nearly
@@ -217,10 +212,9 @@ constexpr int kDetTerms = 20;
 // contact/default.hpp, coefficient_step_lanes), the same IEEE operations in each lane.
 template <class T>
 PW85_V4_INLINE lanes::MaskOf<T> det_precise(T const q[6], T &det) noexcept {
-  using rdd::fms;
-  using rdd::two_sum_t;
+  using dd_lanes::fms;
   using lanes::vabs;
-  T p[rdd::kDetTerms];
+  T p[dd_lanes::kDetTerms];
   // Products x y z with their signs (storage order 00 01 02 11 12 22).
   T const x[5] = {q[0], q[0], q[1], q[1] + q[1], q[2]};
   T const y[5] = {q[3], q[4], q[1], q[2], q[2]};
@@ -237,10 +231,10 @@ PW85_V4_INLINE lanes::MaskOf<T> det_precise(T const q[6], T &det) noexcept {
   }
   // SumK, K = 3: two VecSum passes (error-free: the exact sum is kept).
   for (int k = 0; k < 2; ++k)
-    for (int i = 1; i < rdd::kDetTerms; ++i) two_sum_t(p[i], p[i - 1], p[i], p[i - 1]);
+    for (int i = 1; i < dd_lanes::kDetTerms; ++i) lanes::two_sum(p[i], p[i - 1], p[i], p[i - 1]);
   T s = p[0];
-  for (int i = 1; i < rdd::kDetTerms - 1; ++i) s = s + p[i];
-  det = s + p[rdd::kDetTerms - 1];
+  for (int i = 1; i < dd_lanes::kDetTerms - 1; ++i) s = s + p[i];
+  det = s + p[dd_lanes::kDetTerms - 1];
   return (det > 0x1p-1000) & (mp * (0x1p-87 * (1.0 + 0x1p-47)) <= det);
 }
 
@@ -256,7 +250,7 @@ PW85_V4_INLINE lanes::MaskOf<T> det_precise(T const q[6], T &det) noexcept {
 // (kSafeLo, kSafeHi), 3E is well inside the exponent range.
 PW85_V4_INLINE bool coefficients_dd(
     Vec3 const &r, Sym3 const &q1, Sym3 const &q2, CoefficientsDD &out) noexcept {
-  using namespace rdd;
+  using namespace dd_lanes;
   // The scale, from the inputs (off the dependency chain of the sums).
   double const tr = ((q1[0] + q1[3]) + q1[5]) + ((q2[0] + q2[3]) + q2[5]);
   long long bits;
@@ -311,7 +305,7 @@ PW85_V4_INLINE bool coefficients_dd(
 // out.scale, within 1.13 u).
 PW85_V4_INLINE bool coefficients_dets_precise(Sym3 const &q1, Sym3 const &q2,
                                           CoefficientsDD &out) noexcept {
-  if ((out.ok & rdd::kCoefficientsNotDet) != rdd::kCoefficientsNotDet) return false;
+  if ((out.ok & dd_lanes::kCoefficientsNotDet) != dd_lanes::kCoefficientsNotDet) return false;
   Sym3 const *const qs[2] = {&q1, &q2};
   for (int m = 0; m < 2; ++m) {
     int const j = m == 0 ? 3 : 6;

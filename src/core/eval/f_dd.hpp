@@ -9,9 +9,7 @@
 
 #include "arith/dd.hpp"
 #include "common/isa.hpp"
-#if PW85_ISA_STATIC_FMA || PW85_ISA_FMA
-#include <immintrin.h>
-#endif
+#include "common/lanes.hpp"
 #include "common/sym3.hpp"
 #include "eval/f_ldl.hpp"
 
@@ -170,16 +168,7 @@ PW85_ALWAYS_INLINE double f_stationary_impl(double lambda, Vec3 const &r, Sym3 c
 }
 
 #if PW85_ISA_STATIC_FMA || PW85_ISA_FMA
-// two_sum (dd.hpp) lane by lane.
-PW85_ALWAYS_INLINE PW85_TARGET_FMA __m256d avx_two_sum(__m256d a, __m256d b,
-                                                                          __m256d &err) noexcept {
-  __m256d const s = _mm256_add_pd(a, b);
-  __m256d const bb = _mm256_sub_pd(s, a);
-  err = _mm256_add_pd(_mm256_sub_pd(a, _mm256_sub_pd(s, bb)), _mm256_sub_pd(b, bb));
-  return s;
-}
-
-// f_stationary_impl<true> with 4-lane AVX vectors, for the FMA variant of
+// f_stationary_impl<true> with 4-lane vectors, for the FMA variant of
 // dd_kernels.cpp (eq. (M11), docs/methods.md): the same exact products and
 // error-free sums, in another order. Lanes of p hold s_j s_k for the entries
 // 0-3 of the symmetric storage, lanes of rr the entries 4-5 and r_0 s_0,
@@ -187,48 +176,47 @@ PW85_ALWAYS_INLINE PW85_TARGET_FMA __m256d avx_two_sum(__m256d a, __m256d b,
 // errors accumulated in double (Ogita, Rump and Oishi's Dot2, as above).
 // Same results as the scalar form on random (lambda, s); faster per DEFAULT
 // call in classes 1-3 (build/bench/bench_contact).
-PW85_ALWAYS_INLINE PW85_TARGET_FMA double f_stationary_avx(
+PW85_ALWAYS_INLINE PW85_TARGET_FMA double f_stationary_lanes(
     double lambda, Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Vec3 const &s) noexcept {
   using namespace dd;
-  __m256d const sa = _mm256_setr_pd(s[0], s[0], s[0], s[1]);
-  __m256d const sb = _mm256_setr_pd(s[0], s[1], s[2], s[1]);
-  __m256d const sc = _mm256_setr_pd(s[1], s[2], r[0], r[1]);
-  __m256d const sd = _mm256_setr_pd(s[2], s[2], s[0], s[1]);
-  __m256d const p = _mm256_mul_pd(sa, sb), pl = _mm256_fmsub_pd(sa, sb, p);
-  __m256d const rr = _mm256_mul_pd(sc, sd), rl = _mm256_fmsub_pd(sc, sd, rr);
-  __m256d const w = _mm256_setr_pd(1.0, 2.0, 2.0, 1.0);  // exact scalings
-  __m256d const c1a = _mm256_mul_pd(_mm256_loadu_pd(q1.a), w);
-  __m256d const c2a = _mm256_mul_pd(_mm256_loadu_pd(q2.a), w);
-  __m256d const c1b = _mm256_setr_pd(2.0 * q1[4], q1[5], 0.0, 0.0);
-  __m256d const c2b = _mm256_setr_pd(2.0 * q2[4], q2[5], 0.0, 0.0);
+  using lanes::fma;
+  using lanes::fms;
+  using lanes::Lanes4;
+  using lanes::shuffle;
+  Lanes4 const sa{s[0], s[0], s[0], s[1]};
+  Lanes4 const sb{s[0], s[1], s[2], s[1]};
+  Lanes4 const sc{s[1], s[2], r[0], r[1]};
+  Lanes4 const sd{s[2], s[2], s[0], s[1]};
+  Lanes4 const p = sa * sb, pl = fms(sa, sb, p);
+  Lanes4 const rr = sc * sd, rl = fms(sc, sd, rr);
+  Lanes4 const w{1.0, 2.0, 2.0, 1.0};  // exact scalings
+  Lanes4 const c1a = lanes::load4(q1.a) * w;
+  Lanes4 const c2a = lanes::load4(q2.a) * w;
+  Lanes4 const c1b{2.0 * q1[4], q1[5], 0.0, 0.0};
+  Lanes4 const c2b{2.0 * q2[4], q2[5], 0.0, 0.0};
   // c (p + pl) = h + l exactly up to the rounding of c pl (l = c p - h + c pl).
-  __m256d const a1 = _mm256_mul_pd(c1a, p), a1l = _mm256_fmadd_pd(c1a, pl, _mm256_fmsub_pd(c1a, p, a1));
-  __m256d const a2 = _mm256_mul_pd(c2a, p), a2l = _mm256_fmadd_pd(c2a, pl, _mm256_fmsub_pd(c2a, p, a2));
-  __m256d const b1 = _mm256_mul_pd(c1b, rr), b1l = _mm256_fmadd_pd(c1b, rl, _mm256_fmsub_pd(c1b, rr, b1));
-  __m256d const b2 = _mm256_mul_pd(c2b, rr), b2l = _mm256_fmadd_pd(c2b, rl, _mm256_fmsub_pd(c2b, rr, b2));
+  Lanes4 const a1 = c1a * p, a1l = fma(c1a, pl, fms(c1a, p, a1));
+  Lanes4 const a2 = c2a * p, a2l = fma(c2a, pl, fms(c2a, p, a2));
+  Lanes4 const b1 = c1b * rr, b1l = fma(c1b, rl, fms(c1b, rr, b1));
+  Lanes4 const b2 = c2b * rr, b2l = fma(c2b, rl, fms(c2b, rr, b2));
   // Lanes {Q1 term, Q1 term, Q2 term, Q2 term}.
-  __m256d const lo = _mm256_permute2f128_pd(a1, a2, 0x20), hi = _mm256_permute2f128_pd(a1, a2, 0x31);
-  __m256d const x = _mm256_permute2f128_pd(b1, b2, 0x20);
-  __m256d err = _mm256_add_pd(_mm256_add_pd(_mm256_permute2f128_pd(a1l, a2l, 0x20),
-                                            _mm256_permute2f128_pd(a1l, a2l, 0x31)),
-                              _mm256_permute2f128_pd(b1l, b2l, 0x20));
-  __m256d e1, e2, e3;
-  __m256d const u = avx_two_sum(lo, hi, e1);
-  __m256d const v = avx_two_sum(u, x, e2);
-  __m256d const t = avx_two_sum(v, _mm256_permute_pd(v, 0x5), e3);  // lanes 0, 2: the sums
-  err = _mm256_add_pd(err, _mm256_add_pd(e1, e2));
-  err = _mm256_add_pd(_mm256_add_pd(err, _mm256_permute_pd(err, 0x5)), e3);
-  __m128d const tl = _mm256_castpd256_pd128(t), th = _mm256_extractf128_pd(t, 1);
-  __m128d const el = _mm256_castpd256_pd128(err), eh = _mm256_extractf128_pd(err, 1);
-  double const sq1 = _mm_cvtsd_f64(tl) + _mm_cvtsd_f64(el);
-  double const sq2 = _mm_cvtsd_f64(th) + _mm_cvtsd_f64(eh);
+  Lanes4 const lo = shuffle<0, 1, 4, 5>(a1, a2), hi = shuffle<2, 3, 6, 7>(a1, a2);
+  Lanes4 const x = shuffle<0, 1, 4, 5>(b1, b2);
+  Lanes4 err = (shuffle<0, 1, 4, 5>(a1l, a2l) + shuffle<2, 3, 6, 7>(a1l, a2l)) +
+               shuffle<0, 1, 4, 5>(b1l, b2l);
+  Lanes4 u, e1, v, e2, t, e3;
+  lanes::two_sum(lo, hi, u, e1);
+  lanes::two_sum(u, x, v, e2);
+  lanes::two_sum(v, shuffle<1, 0, 3, 2>(v, v), t, e3);  // lanes 0, 2: the sums
+  err = err + (e1 + e2);
+  err = (err + shuffle<1, 0, 3, 2>(err, err)) + e3;
+  Lanes4 const sq = t + err;  // lanes 0, 2: s^T Q1 s, s^T Q2 s
+  double const sq1 = sq[0], sq2 = sq[2];
   // r^T s: lanes 2, 3 of rr and r_2 s_2.
-  __m128d const rh = _mm256_extractf128_pd(rr, 1), rlh = _mm256_extractf128_pd(rl, 1);
   DD const t2 = two_prod<true>(r[2], s[2]);
-  DD const ra = two_sum(_mm_cvtsd_f64(rh), _mm_cvtsd_f64(_mm_unpackhi_pd(rh, rh)));
+  DD const ra = two_sum(rr[2], rr[3]);
   DD const rb = two_sum(ra.hi, t2.hi);
-  double const rc = ((_mm_cvtsd_f64(rlh) + _mm_cvtsd_f64(_mm_unpackhi_pd(rlh, rlh))) + t2.lo) +
-                    (ra.lo + rb.lo);
+  double const rc = ((rl[2] + rl[3]) + t2.lo) + (ra.lo + rb.lo);
   return stationary_combine(lambda, rb.hi + rc, sq1, sq2);
 }
 #endif
