@@ -41,12 +41,8 @@ ACCURACY = {"DEFAULT": 1e-14, "BRENT": 1e-10, "NEWTON": 1e-12, "RATIONAL": 1e-12
 CONTACT_TIME_TOL = 1e-11  # of t_max = 1 (calls.c)
 # Known status differences across variants, not fixed yet (docs/stability.md,
 # "Across CPUs"): (call number, function) of the default corpus (seed 1).
-# They are reported, not failed; any other difference fails.
-KNOWN_DIFFERENCES = {
-    ("1480890", "pw85_contact_function_method/DEFAULT"),  # input 37208: 2^-476 vs 2^475
-    ("1480891", "pw85_dca/DEFAULT"),
-    ("1480907", "pw85_contact"),
-}
+# They are reported, not failed; any other difference fails. None at present.
+KNOWN_DIFFERENCES = set()
 
 
 def tolerated_fields(fn):
