@@ -30,7 +30,8 @@
 #include "eval/f_coefficients_dd.hpp"
 
 namespace pw85 {
-namespace adjd {
+// The adjugate path (E9), x86-64-v4.
+namespace adjugate_path {
 
 using lanes::broadcast;
 using lanes::broadcast_index;
@@ -113,7 +114,7 @@ PW85_V4_INLINE double sum3(Lanes8 v) { return (v[0] + v[1]) + v[2]; }
 // The largest |v| over lanes 0-5.
 PW85_V4_INLINE double max6(Lanes8 v) {
   Lanes8 const m = triple_max(v);
-  return fastd::max2(m[0], m[3]);
+  return cholesky_path::max2(m[0], m[3]);
 }
 
 // Largest relative error bounds of the kernel's values accepted: C, U and B
@@ -238,7 +239,7 @@ PW85_V4_INLINE void kernel(double lh, double ll, Vec3 const &r, Sym3 const &q1, 
   Lanes8 const cwm = triple_max(cwv), cwam = triple_max(cwa);
   out.f_err = kGammaDD * dotsa[0];
   out.ok = (ok_c & ok_ub & ok_t & 0x09) == 0x09;  // lane 0: C, U, T1; lane 3: B, T2
-  out.rel_h = kGammaDD * fastd::max2(cwam[0] / cwm[0], dotsa[3] / std::fabs(dv[3]));
+  out.rel_h = kGammaDD * cholesky_path::max2(cwam[0] / cwm[0], dotsa[3] / std::fabs(dv[3]));
 }
 // Largest t2 (relative change of X along dl) for the first-order move of
 // X, h and a2; beyond it, the second pass.
@@ -351,8 +352,8 @@ PW85_V4_INLINE bool adjugate_derivatives(double lambda, double mu2, Vec3 const &
     double const err_eps = 3.0 * (p2 * mx * (eps_x + 2.0 * kU) +
                                   mh * mh * (2.0 * e_h + eps2 + 3.0 * kU) * iha);
     double const err_t = 3.0 * (p2 * mx * t2 + 3.0 * mh * mh * t2 * iha);
-    bool const grad_ok = 3.0 * err_g2p <= fastd::kAcceptG * ms * p2;
-    bool hess_ok = err_eps + err_t <= fastd::kAcceptH * mhess;
+    bool const grad_ok = 3.0 * err_g2p <= cholesky_path::kAcceptG * ms * p2;
+    bool hess_ok = err_eps + err_t <= cholesky_path::kAcceptH * mhess;
     if (grad_ok && !hess_ok && t2 <= kMaxMove) {
       // X, h and a2 moved to lambda + dl to first order:
       //   X' = -X D X, D = Q2 - Q1, (Q1 s)' = -Q1 v, (Q2 s)' = -Q2 v,
@@ -396,7 +397,7 @@ PW85_V4_INLINE bool adjugate_derivatives(double lambda, double mu2, Vec3 const &
           3.0 * (p2 * mx * (eps_x + 2.0 * kU + 2.0 * kU * t2 + second) +
                  (2.0 * mhm * (e_h * mhm + err_hm) + mhm * mhm * (eps2 + 3.0 * kU) +
                   mhm * mhm * err_am * 2.0 * iham) * iham);
-      hess_ok = err_m <= fastd::kAcceptH * mhessm && a2m > 0.0;
+      hess_ok = err_m <= cholesky_path::kAcceptH * mhessm && a2m > 0.0;
       if (hess_ok) hess = hessm;
     }
     lanes::store_first(out.hess_r12, kSym, hess);
@@ -416,5 +417,5 @@ PW85_V4_INLINE bool adjugate_derivatives(double lambda, double mu2, Vec3 const &
   return false;
 }
 
-}  // namespace adjd
+}  // namespace adjugate_path
 }  // namespace pw85

@@ -110,7 +110,7 @@ inline bool unscaled(double mq, double mr) noexcept {
 }  // namespace
 
 bool derivatives_from_default_ok(Vec3 const &r, Sym3 const &q1, Sym3 const &q2) noexcept {
-  return unscaled(fastd::max2(fastd::max_abs6(q1), fastd::max_abs6(q2)), fastd::max_abs3(r));
+  return unscaled(cholesky_path::max2(cholesky_path::max_abs6(q1), cholesky_path::max_abs6(q2)), cholesky_path::max_abs3(r));
 }
 
 Status contact_derivatives_from_default(Vec3 const &r, Sym3 const &q1, Sym3 const &q2,
@@ -130,9 +130,9 @@ Status contact_derivatives_from_default(Vec3 const &r, Sym3 const &q1, Sym3 cons
 // and is finite wherever its value is in the range of double.
 Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Derivatives &d,
                            DerivativeFields fields) noexcept {
-  double const mq1 = fastd::max_abs6(q1), mq2 = fastd::max_abs6(q2);
-  double const mq = fastd::max2(mq1, mq2);
-  double const mr = fastd::max_abs3(r);
+  double const mq1 = cholesky_path::max_abs6(q1), mq2 = cholesky_path::max_abs6(q2);
+  double const mq = cholesky_path::max2(mq1, mq2);
+  double const mr = cholesky_path::max_abs3(r);
   if (unscaled(mq, mr)) {
     bool const in_range = mq1 > kSafeLo && mq1 < kSafeHi && mq2 > kSafeLo && mq2 < kSafeHi;
     MethodResult res;
@@ -146,7 +146,7 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Deriva
   Sym3 a, b;
   scale_pair(r, q1, q2, e, 2 * e, rs, a, b);
   int t = 0;
-  double const mrs = fastd::max_abs3(rs);
+  double const mrs = cholesky_path::max_abs3(rs);
   if (!(mrs > 0x1p-30 && mrs < 0x1p30)) {
     std::frexp(mrs, &t);
     scale_by_power_of_two(rs.x, kDim, -t);

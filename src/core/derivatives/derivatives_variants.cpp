@@ -42,7 +42,7 @@ PW85_DERIVATIVES_VARIANT(fma, PW85_TARGET_FMA, true)
 PW85_TARGET_V4 Status from_solution_v4(Status status, MethodResult const &res, Vec3 const &r,
                                        Sym3 const &q1, Sym3 const &q2, DerivativeFields fields,
                                        Derivatives &d) noexcept {
-  if (is_solved(status, res) && adjd::adjugate_derivatives(res.lambda, res.mu2, r, q1, q2, d)) {
+  if (is_solved(status, res) && adjugate_path::adjugate_derivatives(res.lambda, res.mu2, r, q1, q2, d)) {
     derivative_paths::drop_unrequested(fields, d);
     return status;
   }

@@ -16,7 +16,8 @@
 #include "eval/f_dd.hpp"
 
 namespace pw85 {
-namespace fastd {
+// The fast path (E8), from one Cholesky factor of Q(lambda).
+namespace cholesky_path {
 
 // Accepted estimated relative errors: a quarter of the documented bounds
 // (gradient, torques and d_q 1e-14; Hessian 1e-12).
@@ -237,5 +238,5 @@ PW85_ALWAYS_INLINE bool fast_derivatives(double lambda, double mu2, Vec3 const &
   return ok;
 }
 
-}  // namespace fastd
+}  // namespace cholesky_path
 }  // namespace pw85

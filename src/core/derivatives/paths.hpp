@@ -165,7 +165,7 @@ PW85_ALWAYS_INLINE Status derivatives_from(Status status, MethodResult const &re
   double lambda = res.lambda;
   // (E8): most pairs; otherwise the refined path (E7) below.
   bool const all_fields = fields == DerivativeFields::kAll;
-  if (solved && fastd::fast_derivatives<F>(lambda, res.mu2, r, q1, q2, all_fields, d)) {
+  if (solved && cholesky_path::fast_derivatives<F>(lambda, res.mu2, r, q1, q2, all_fields, d)) {
     drop_unrequested(fields, d);
     return status;
   }
