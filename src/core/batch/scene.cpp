@@ -649,12 +649,13 @@ static_assert(kMaxRanges + 1 <= kHitRanges, "a range index fits in a hit");
 // registers (no store of scalars reloaded as a vector).
 PW85_ALWAYS_INLINE void separate_hits(Sorted const &q, long long a, double const (*as)[3],
                                       long long const *hits, int m, CandidateSink &sink) noexcept {
-  using V = lanes::VecD<kScanPad>;
+  using Lane = lanes::VecD<kScanPad>;
   static_assert(kScanPad == 4, "four lanes");
   double const *wx = q.wx.data, *wy = q.wy.data, *wz = q.wz.data, *rad = q.rad.data;
   double const *qa = q.q.data + 6 * a;
-  V const qav[6] = {V{} + qa[0], V{} + qa[1], V{} + qa[2], V{} + qa[3], V{} + qa[4], V{} + qa[5]};
-  V const vrerr = V{} + (q.grid.periodic ? q.wrap_error : 0.0);
+  Lane const qav[6] = {Lane{} + qa[0], Lane{} + qa[1], Lane{} + qa[2],
+                       Lane{} + qa[3], Lane{} + qa[4], Lane{} + qa[5]};
+  Lane const vrerr = Lane{} + (q.grid.periodic ? q.wrap_error : 0.0);
   sink.spheres += m;
   for (int t = 0; t < m; t += kScanPad) {
     long long b[kScanPad];
@@ -665,11 +666,11 @@ PW85_ALWAYS_INLINE void separate_hits(Sorted const &q, long long a, double const
       ab[l] = as[h % kHitRanges];
       qb[l] = q.q.data + 6 * b[l];
     }
-    V d[3], qbv[6];
-    d[0] = V{wx[b[0]], wx[b[1]], wx[b[2]], wx[b[3]]} - V{ab[0][0], ab[1][0], ab[2][0], ab[3][0]};
-    d[1] = V{wy[b[0]], wy[b[1]], wy[b[2]], wy[b[3]]} - V{ab[0][1], ab[1][1], ab[2][1], ab[3][1]};
-    d[2] = V{wz[b[0]], wz[b[1]], wz[b[2]], wz[b[3]]} - V{ab[0][2], ab[1][2], ab[2][2], ab[3][2]};
-    for (int k = 0; k < 6; ++k) qbv[k] = V{qb[0][k], qb[1][k], qb[2][k], qb[3][k]};
+    Lane d[3], qbv[6];
+    d[0] = Lane{wx[b[0]], wx[b[1]], wx[b[2]], wx[b[3]]} - Lane{ab[0][0], ab[1][0], ab[2][0], ab[3][0]};
+    d[1] = Lane{wy[b[0]], wy[b[1]], wy[b[2]], wy[b[3]]} - Lane{ab[0][1], ab[1][1], ab[2][1], ab[3][1]};
+    d[2] = Lane{wz[b[0]], wz[b[1]], wz[b[2]], wz[b[3]]} - Lane{ab[0][2], ab[1][2], ab[2][2], ab[3][2]};
+    for (int k = 0; k < 6; ++k) qbv[k] = Lane{qb[0][k], qb[1][k], qb[2][k], qb[3][k]};
     auto const separated = plane_separates(d, qav, qbv, vrerr);
     int const w = m - t < kScanPad ? m - t : kScanPad;
     for (int l = 0; l < w; ++l)
@@ -685,9 +686,9 @@ PW85_ALWAYS_INLINE void separate_hits(Sorted const &q, long long a, double const
 PW85_ALWAYS_INLINE void scan_particle(Sorted const &q, long long a, ScanRange const *ranges,
                                       int nranges, long long own_end,
                                       CandidateSink &sink) noexcept {
-  using V = lanes::VecD<kScanPad>;
+  using Lane = lanes::VecD<kScanPad>;
   double const *wx = q.wx.data, *wy = q.wy.data, *wz = q.wz.data, *rad = q.rad.data;
-  V const vra = V{} + (rad[a] + q.wrap_error);
+  Lane const vra = Lane{} + (rad[a] + q.wrap_error);
   // a's centre less each range's shift (index r + 1; 0: its own cell).
   double as[kMaxRanges + 1][3];
   as[0][0] = wx[a], as[0][1] = wy[a], as[0][2] = wz[a];
@@ -699,16 +700,16 @@ PW85_ALWAYS_INLINE void scan_particle(Sorted const &q, long long a, ScanRange co
   for (int r = -1; r < nranges; ++r) {
     long long const b0 = r < 0 ? a + 1 : ranges[r].b0, b1 = r < 0 ? own_end : ranges[r].b1;
     double const *ab = as[r + 1];
-    V const vax = V{} + ab[0], vay = V{} + ab[1], vaz = V{} + ab[2];
+    Lane const vax = Lane{} + ab[0], vay = Lane{} + ab[1], vaz = Lane{} + ab[2];
     // Four lanes at a time (the arrays carry kScanPad readable entries past
     // their end, lanes past b1 dropped).
     for (long long b = b0; b < b1; b += kScanPad) {
-      V x, y, z, rb;
+      Lane x, y, z, rb;
       std::memcpy(&x, wx + b, sizeof x);
       std::memcpy(&y, wy + b, sizeof y);
       std::memcpy(&z, wz + b, sizeof z);
       std::memcpy(&rb, rad + b, sizeof rb);
-      V const dx = x - vax, dy = y - vay, dz = z - vaz, reach = vra + rb;
+      Lane const dx = x - vax, dy = y - vay, dz = z - vaz, reach = vra + rb;
       auto const near = dx * dx + dy * dy + dz * dz < reach * reach * (1 + kMargin);
       int bits = static_cast<int>((near[0] & 1) | (near[1] & 2) | (near[2] & 4) | (near[3] & 8));
       if (b1 - b < kScanPad) bits &= (1 << (b1 - b)) - 1;
