@@ -667,9 +667,12 @@ PW85_ALWAYS_INLINE void separate_hits(Sorted const &q, long long a, double const
       qb[l] = q.q.data + 6 * b[l];
     }
     Lane d[3], qbv[6];
-    d[0] = Lane{wx[b[0]], wx[b[1]], wx[b[2]], wx[b[3]]} - Lane{ab[0][0], ab[1][0], ab[2][0], ab[3][0]};
-    d[1] = Lane{wy[b[0]], wy[b[1]], wy[b[2]], wy[b[3]]} - Lane{ab[0][1], ab[1][1], ab[2][1], ab[3][1]};
-    d[2] = Lane{wz[b[0]], wz[b[1]], wz[b[2]], wz[b[3]]} - Lane{ab[0][2], ab[1][2], ab[2][2], ab[3][2]};
+    d[0] = Lane{wx[b[0]], wx[b[1]], wx[b[2]], wx[b[3]]} -
+           Lane{ab[0][0], ab[1][0], ab[2][0], ab[3][0]};
+    d[1] = Lane{wy[b[0]], wy[b[1]], wy[b[2]], wy[b[3]]} -
+           Lane{ab[0][1], ab[1][1], ab[2][1], ab[3][1]};
+    d[2] = Lane{wz[b[0]], wz[b[1]], wz[b[2]], wz[b[3]]} -
+           Lane{ab[0][2], ab[1][2], ab[2][2], ab[3][2]};
     for (int k = 0; k < 6; ++k) qbv[k] = Lane{qb[0][k], qb[1][k], qb[2][k], qb[3][k]};
     auto const separated = plane_separates(d, qav, qbv, vrerr);
     int const w = m - t < kScanPad ? m - t : kScanPad;
