@@ -653,8 +653,10 @@ typedef struct pw85_configuration pw85_configuration;
  * periodicity) as for pw85_scene_overlap(). Each centre must be finite
  * and, with a box, at most 2^20 box lengths from the origin (2^500 without
  * one); each matrix finite and positive definite (as pw85_overlap() checks
- * it); with a box, the two largest bounding spheres must satisfy the
- * pw85_scene_* calls' bound (radii summing to at most min(Lx, Ly, Lz)/2).
+ * it); with a box, the largest bounding sphere must satisfy the
+ * pw85_scene_* calls' bound with itself (twice its radius at most
+ * min(Lx, Ly, Lz)/2): no particle meets its own images, and any two
+ * particles satisfy the bound together.
  * Returns PW85_OK and *configuration, or PW85_ERR_INVALID_ARGUMENT (NULL
  * pointer, n < 0, invalid box, NaN or infinite value, spheres too large for
  * the box), PW85_ERR_NOT_SPD, PW85_ERR_RANGE (a centre too far out) or
@@ -708,7 +710,9 @@ PW85_API int pw85_configuration_pairs(pw85_configuration const *configuration, d
  * verdict of the pair as pw85_configuration_pairs() would judge it after
  * the move), or -1. The configuration is not changed. Returns PW85_OK,
  * PW85_ERR_INVALID_ARGUMENT (NULL, i out of range, NaN or infinite value,
- * with a box a bounding sphere too large for it), PW85_ERR_NOT_SPD,
+ * with a box a bounding sphere that breaks pw85_configuration_create()'s
+ * bound with itself or with the largest one the configuration has held),
+ * PW85_ERR_NOT_SPD,
  * PW85_ERR_RANGE (centre too far out), PW85_ERR_INACCURATE or
  * PW85_ERR_NO_MEMORY, with *j unchanged. */
 PW85_API int pw85_configuration_test_move(pw85_configuration const *configuration,

@@ -693,6 +693,48 @@ static void test_pairs_subnormal_entries(void) {
   g_assert_cmpint(missed, ==, 0);
 }
 
+/* The box bound: in a 10-cube (half width 5), spheres of radii 2.6 and 1
+ * fit together (3.6) but the first meets its own images (5.2): refused,
+ * bad = 0. Radii 2.4 and 1 are accepted, and moving either particle where
+ * it is, or growing the second to the first's size, passes the same bound;
+ * growing it beyond 2.5 does not. Then the input the fuzz target found
+ * (tests/fuzz/corpus/configuration-move-in-place-tilted-box): a box of huge
+ * tilts, where the sum of the two spheres fits but the first meets its
+ * own images: refused at creation, as by the bound of a move. */
+static void test_box_bound(void) {
+  double const box[6] = {10, 10, 10, 0, 0, 0};
+  double const c[6] = {0, 0, 0, 5, 5, 5};
+  double q[12] = {2.6 * 2.6, 0, 0, 2.6 * 2.6, 0, 2.6 * 2.6, 1, 0, 0, 1, 0, 1};
+  pw85_configuration *cf = NULL;
+  long long bad = -7, j = -7;
+  g_assert_cmpint(pw85_configuration_create(2, c, q, box, &cf, &bad), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(bad, ==, 0);
+  g_assert_null(cf);
+  q[0] = q[3] = q[5] = 2.4 * 2.4;
+  g_assert_cmpint(pw85_configuration_create(2, c, q, box, &cf, &bad), ==, PW85_OK);
+  for (int i = 0; i < 2; i++) {
+    g_assert_cmpint(pw85_configuration_test_move(cf, i, c + 3 * i, q + 6 * i, &j), ==, PW85_OK);
+    g_assert_cmpint(pw85_configuration_move(cf, i, c + 3 * i, q + 6 * i), ==, PW85_OK);
+  }
+  g_assert_cmpint(pw85_configuration_move(cf, 1, c + 3, q), ==, PW85_OK);
+  double const big[6] = {2.51 * 2.51, 0, 0, 2.51 * 2.51, 0, 2.51 * 2.51};
+  g_assert_cmpint(pw85_configuration_move(cf, 1, c + 3, big), ==, PW85_ERR_INVALID_ARGUMENT);
+  pw85_configuration_destroy(cf);
+
+  double const tbox[6] = {8, 9, 10, 0x1.05247p+54, 0x1.c55414645445fp+325, 0x1.f525f4c53535fp+245};
+  double const tc[6] = {0, 0, 0, 0x1.79016c803a351p+4, 0, 0};
+  double const tq[12] = {0x1.331ffc328ad2bp-1008, 0x1.02p-1019, 0, 0x1.80000000215p+1, 1,
+                         0x1.14f5ep+0, 0x1.0d2163ad6fc9dp-1, -0x1.ffee7b92c3abep-2,
+                         0x1.ab97a49b1e1dap-259, 0x1.667a40640f828p+0, -0x1.f313e61191986p-2,
+                         0x1.fdbd1fd1348bp+0};
+  cf = NULL;
+  g_assert_cmpint(pw85_configuration_create(2, tc, tq, tbox, &cf, &bad), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(bad, ==, 0);
+  g_assert_null(cf);
+}
+
 int main(int argc, char **argv) {
   g_test_init(&argc, &argv, NULL);
   g_test_add_func("/pw85_configuration_pairs/open", test_pairs_open);
@@ -706,5 +748,6 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_configuration_update/brute_force", test_update);
   g_test_add_func("/pw85_configuration_neighbours/brute_force", test_neighbours_brute_force);
   g_test_add_func("/pw85_configuration/bad_input", test_bad_input);
+  g_test_add_func("/pw85_configuration/box_bound", test_box_bound);
   return g_test_run();
 }

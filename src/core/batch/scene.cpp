@@ -372,8 +372,8 @@ Status scene_assign(Scene &scene, long long n, double const *centres, double con
   if (n < 0 || !batch::make_box(box_in, box)) return kInvalidArgument;
   // Every particle is checked before anything changes.
   double rmax = 0;
-  long long imax = -1, isecond = -1;
-  double g1 = -1, g2 = -1;  // the two largest reach2
+  long long imax = -1;
+  double g1 = -1;  // the largest reach2
   for (long long i = 0; i < n; ++i) {
     Status const s = check_particle(box, centres + 3 * i, q + 6 * i);
     if (s != kOk) {
@@ -384,23 +384,15 @@ Status scene_assign(Scene &scene, long long n, double const *centres, double con
     if (r > rmax) rmax = r;
     double const g = batch::reach2(q + 6 * i);
     if (g > g1) {
-      g2 = g1;
-      isecond = imax;
       g1 = g;
       imax = i;
-    } else if (g > g2) {
-      g2 = g;
-      isecond = i;
     }
   }
-  // The pw85_scene_* calls' bound on the pair of the two largest spheres
-  // (a particle with itself when n = 1: its images must not overlap it).
-  if (box.periodic && n > 0) {
-    long long const j = isecond >= 0 ? isecond : imax;
-    if (batch::too_large(box, q + 6 * imax, q + 6 * j)) {
-      bad = imax;
-      return kInvalidArgument;
-    }
+  // The pw85_scene_* calls' bound on the largest sphere with itself: no
+  // particle meets its own images, and any two spheres fit together.
+  if (box.periodic && n > 0 && batch::too_large(box, q + 6 * imax, q + 6 * imax)) {
+    bad = imax;
+    return kInvalidArgument;
   }
   double lo[3], hi[3];
   centre_bounds(n, centres, lo, hi);
@@ -438,6 +430,7 @@ Status scene_assign(Scene &scene, long long n, double const *centres, double con
   scene.box = box;
   scene.grid = grid;
   scene.radius_max = rmax;
+  scene.reach_max = n > 0 ? std::sqrt(g1) : 0.0;
   if (n > 0) {
     std::memcpy(scene.centres, centres, static_cast<size_t>(3 * n) * sizeof(double));
     std::memcpy(scene.q, q, static_cast<size_t>(6 * n) * sizeof(double));
@@ -965,18 +958,19 @@ Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacit
 namespace {
 
 // Checks a trial (i, centre, q) of scene: index, values, and (periodic)
-// that its bounding sphere and the largest one fit the box. radius gets
-// the trial's bounding radius.
+// that its bounding sphere fits the box with itself and with the largest
+// one (scene.reach_max), the bound scene_create checks. radius gets the
+// trial's bounding radius, reach its sqrt(reach2).
 Status check_trial(Scene const &scene, long long i, double const *centre, double const *q,
-                   double &radius) noexcept {
+                   double &radius, double &reach) noexcept {
   if (i < 0 || i >= scene.n) return kInvalidArgument;
   Status const s = check_particle(scene.box, centre, q);
   if (s != kOk) return s;
   radius = bounding_radius(q);
+  reach = std::sqrt(batch::reach2(q));
   if (scene.box.periodic) {
-    double const rt = std::sqrt(batch::reach2(q));
-    double const other = scene.n > 1 ? scene.radius_max : rt;
-    if (rt + (other > rt ? other : rt) > scene.box.max_reach) return kInvalidArgument;
+    double const other = scene.reach_max > reach ? scene.reach_max : reach;
+    if (reach + other > scene.box.max_reach) return kInvalidArgument;
   }
   return kOk;
 }
@@ -1043,8 +1037,8 @@ bool for_each_near(Scene const &scene, long long i, double const x[3], double rh
 
 Status scene_test_move(Scene const &scene, long long i, double const centre[3],
                        double const q[6], long long &j_found) noexcept {
-  double rt;
-  Status const s = check_trial(scene, i, centre, q, rt);
+  double rt, reach;
+  Status const s = check_trial(scene, i, centre, q, rt, reach);
   if (s != kOk) return s;
   // Candidates in ascending j, then the exact predicate in that order.
   constexpr int kLocal = 64;
@@ -1119,14 +1113,15 @@ Status scene_neighbours(Scene const &scene, long long i, double distance, long l
 }
 
 Status scene_move(Scene &scene, long long i, double const centre[3], double const q[6]) noexcept {
-  double rt;
-  Status const s = check_trial(scene, i, centre, q, rt);
+  double rt, reach;
+  Status const s = check_trial(scene, i, centre, q, rt, reach);
   if (s != kOk) return s;
   std::memcpy(scene.centres + 3 * i, centre, 3 * sizeof(double));
   std::memcpy(scene.q + 6 * i, q, 6 * sizeof(double));
   scene.radius[i] = rt;
   wrapped_centre(scene.box, centre, scene.wrapped + 3 * i);
   if (rt > scene.radius_max) scene.radius_max = rt;
+  if (reach > scene.reach_max) scene.reach_max = reach;
   long long const cell = cell_of_point(scene.grid, centre);
   if (cell != scene.cell_of[i]) {
     unlink(scene, i);

@@ -19,6 +19,9 @@ struct Scene {
   double *radius = nullptr;   // n, bounding-sphere radius rounded up
   double *wrapped = nullptr;  // 3n, centres wrapped into the box (wrapped_centre)
   double radius_max = 0;      // >= every radius
+  // >= every sqrt(batch::reach2(q_i)), and (with a box) at most half of
+  // box.max_reach: no bounding sphere meets its own images.
+  double reach_max = 0;
   // Cell grid for test_move/move: doubly linked lists of the particles of
   // each cell.
   CellGrid grid;
