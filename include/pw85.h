@@ -693,8 +693,9 @@ PW85_API long long pw85_configuration_size(pw85_configuration const *configurati
  * mu2, NaN where that call fails). Returns PW85_OK, PW85_ERR_CAPACITY (more
  * than capacity pairs: *count set, nothing else written; capacity = 0 with
  * i, j NULL asks for the count), PW85_ERR_INVALID_ARGUMENT (NULL pointer,
- * s < 1 or not finite, capacity < 0, nthreads < 0, or with a box s times
- * the two largest bounding radii summing to more than min(Lx, Ly, Lz)/2),
+ * s < 1 or not finite, s^2 times a matrix entry beyond the range of
+ * double, capacity < 0, nthreads < 0, or with a box s times the two
+ * largest bounding radii summing to more than min(Lx, Ly, Lz)/2),
  * PW85_ERR_NOT_SPD or PW85_ERR_INACCURATE (as pw85_overlap() on a pair) or
  * PW85_ERR_NO_MEMORY, with nothing written. examined (may be NULL)
  * receives two counts of the broad phase: the pairs whose bounding spheres

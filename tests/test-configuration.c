@@ -700,7 +700,9 @@ static void test_pairs_subnormal_entries(void) {
  * growing it beyond 2.5 does not. Then the input the fuzz target found
  * (tests/fuzz/corpus/configuration-move-in-place-tilted-box): a box of huge
  * tilts, where the sum of the two spheres fits but the first meets its
- * own images: refused at creation, as by the bound of a move. */
+ * own images: refused at creation, as by the bound of a move. Then the
+ * scale s of pw85_configuration_pairs at the range of double (the input
+ * tests/fuzz/corpus/configuration-pairs-scale-overflow). */
 static void test_box_bound(void) {
   double const box[6] = {10, 10, 10, 0, 0, 0};
   double const c[6] = {0, 0, 0, 5, 5, 5};
@@ -733,6 +735,21 @@ static void test_box_bound(void) {
                   PW85_ERR_INVALID_ARGUMENT);
   g_assert_cmpint(bad, ==, 0);
   g_assert_null(cf);
+
+  /* Pairs within s: s^2 q must stay finite (2^600 with unit spheres, open
+   * scene): a call error, nothing written; 2^500 is taken. */
+  double const uq[12] = {1, 0, 0, 1, 0, 1, 1, 0, 0, 1, 0, 1};
+  double const uc[6] = {0, 0, 0, 3, 0, 0};
+  g_assert_cmpint(pw85_configuration_create(2, uc, uq, NULL, &cf, &bad), ==, PW85_OK);
+  long long i[1] = {-7}, jj[1] = {-7}, count = -7;
+  g_assert_cmpint(pw85_configuration_pairs(cf, 0x1p600, 1, 1, i, jj, NULL, &count, NULL), ==,
+                  PW85_ERR_INVALID_ARGUMENT);
+  g_assert_cmpint(count, ==, -7);
+  g_assert_cmpint(i[0], ==, -7);
+  g_assert_cmpint(pw85_configuration_pairs(cf, 0x1p500, 1, 1, i, jj, NULL, &count, NULL), ==,
+                  PW85_OK);
+  g_assert_cmpint(count, ==, 1);
+  pw85_configuration_destroy(cf);
 }
 
 int main(int argc, char **argv) {

@@ -841,20 +841,24 @@ Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacit
   Box const &box = scene.box;
   double const s2 = s * s;
   bool const scaled = s2 != 1.0;
-  // A box must hold the pairs of the two largest scaled spheres.
-  if (box.periodic && scaled && n > 0) {
-    double r1 = 0, r2 = 0;
+  // The scaled matrices s^2 q must be finite, and a box must hold the pairs
+  // of the two largest scaled spheres.
+  if (scaled && n > 0) {
+    double r1 = 0, r2 = 0, qmax = 0;
     for (long long i = 0; i < n; ++i) {
-      double const g = std::sqrt(batch::reach2(scene.q + 6 * i));
+      double const *qi = scene.q + 6 * i;
+      double const g = std::sqrt(batch::reach2(qi));
       if (g > r1) {
         r2 = r1;
         r1 = g;
       } else if (g > r2) {
         r2 = g;
       }
+      for (int t = 0; t < 6; ++t) qmax = std::fmax(qmax, std::fabs(qi[t]));
     }
+    if (!(s2 * qmax <= kMaxDouble)) return kInvalidArgument;
     if (n == 1) r2 = r1;
-    if (s * (r1 + r2) > box.max_reach) return kInvalidArgument;
+    if (box.periodic && s * (r1 + r2) > box.max_reach) return kInvalidArgument;
   }
   if (n < 2) {
     count = 0;

@@ -70,6 +70,8 @@ bool exact_minors_positive(double const *a, int n) noexcept {
 }
 
 bool decide(double const *a, int n) noexcept {
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(a[i])) return false;  // the exact path takes finite values only
   double const m = max_abs(a, n);
   if (m <= kSpdFilterHi) {
     int const v = certify(a, n);

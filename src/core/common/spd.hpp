@@ -99,7 +99,7 @@ inline bool certain_spd(double const *a) noexcept {
 }
 
 // The decision, for a finite matrix of any magnitude (Sym3 storage): true
-// iff a is positive definite exactly.
+// iff a is positive definite exactly; false where an entry is not finite.
 bool positive_definite(double const *a) noexcept;
 
 // The same decision for a symmetric 2x2 matrix (Sym2 storage a00 a01 a11):
