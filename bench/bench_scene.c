@@ -357,6 +357,9 @@ int main(int argc, char **argv) {
       sweeps = atoi(argv[++k]);
     } else if (!strcmp(argv[k], "--seed") && k + 1 < argc) {
       rng_state = strtoull(argv[++k], NULL, 10) * 2654435761ULL + 1;
+    } else if (argv[k][0] == '-') {
+      out = NULL;  // an unknown option, or one missing its value
+      break;
     } else {
       out = argv[k];
     }

@@ -144,7 +144,10 @@ inline bool spheres_apart(double const r[3], double reach) noexcept {
 // a bound of its rounding error, 32 u sum_a n_a^2 Q_aa (>= gamma_6 sum_ab
 // |n_a| |Q_ab| |n_b|, as |Q_ab| <= (Q_aa + Q_bb) / 2), plus a bound of its
 // underflow error, 16 (|n|_1 + 1) 2^-1074 (each of the 12 products loses
-// at most 2^-1075 when it underflows; those of a_i are multiplied by |n_i|).
+// at most 2^-1075 when it underflows; those of a_i are multiplied by |n_i|),
+// taken as (|n|_1 + 1) 2^-1018 so that no subnormal is computed: x86 takes a
+// microcode assist for each subnormal result, which slows the query by a
+// third (build/bench/bench_scene --n 1000000).
 // The bound is >= 0 unless a product overflows (inf - inf: NaN). It is not
 // clamped: the square root is then NaN and the plane test (S1) below
 // declines, as it must (a bound clamped to 0 would let it separate
@@ -157,7 +160,7 @@ PW85_ALWAYS_INLINE T support2_upper(T const q[6], T const n[3], T n_abs) noexcep
   T const a2 = q[2] * n[0] + q[4] * n[1] + q[5] * n[2];
   T const h = n[0] * a0 + n[1] * a1 + n[2] * a2;
   T const diag = q[0] * n[0] * n[0] + q[3] * n[1] * n[1] + q[5] * n[2] * n[2];
-  return h + 32 * kU * diag + 16 * kMinSubnormal * (n_abs + 1.0);
+  return h + 32 * kU * diag + (16 * kMinNormal) * (n_abs + 1.0);
 }
 
 // (S1): true (each lane: a true mask) only when the plane of normal n =
@@ -179,7 +182,7 @@ PW85_ALWAYS_INLINE auto plane_separates(T const r[3], T const qa[6], T const qb[
   T const nr_abs = lanes::vabs(n[0] * r[0]) + lanes::vabs(n[1] * r[1]) + lanes::vabs(n[2] * r[2]);
   T const n_abs = lanes::vabs(n[0]) + lanes::vabs(n[1]) + lanes::vabs(n[2]);
   T const lhs = lanes::vabs(nr) - 8 * kU * nr_abs - n_abs * r_error * (1 + 8 * kU) -
-                4 * kMinSubnormal;
+                4 * kMinNormal;  // >= the underflow error 4 2^-1074, normal
   T const rhs = (lanes::vsqrt(support2_upper(qa, n, n_abs)) +
                  lanes::vsqrt(support2_upper(qb, n, n_abs))) *
                 (1 + 8 * kU);
