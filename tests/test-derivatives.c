@@ -798,6 +798,31 @@ static void test_long_needle(void) {
   g_assert_cmpfloat(fabs(d.d_r12[0]), <=, 1e-150);
 }
 
+/* Matrix entries over 2^400 apart and r12 far longer than both
+ * ellipsoids' short axes (the pair libFuzzer found,
+ * tests/fuzz/corpus/derivatives-wide-scales): PW85_OK where DEFAULT
+ * answers, against mpmath at 400 digits (the matrices are diagonal: f' by
+ * its sum over the axes, the maximiser by bisection; (E1), (E2)). */
+static void test_wide_scales(void) {
+  double const r[3] = {-0x1.bfa4dff172bb4p-2, -0x1.5eedb89747b64p-2, 0x1.0a40039385f78p+288};
+  double const q1[6] = {9.000000000000112, 0, 0, 1.2067027136948337e+155, 0, 9.000495910644531};
+  double const q2[6] = {1, 0, 0, 5.192296858534828e+33, 0, 1};
+  pw85_derivatives_t d;
+  int const s = pw85_contact_derivatives(r, q1, q2, &d);
+  g_assert_cmpint(s, ==, PW85_OK);
+  g_assert_true(check_forces_pair(r, q1, q2, s, &d));
+  g_assert_cmpfloat(rel_error(d.mu2, 1.6720107021031418809e+172), <=, 4 * DBL_EPSILON);
+  g_assert_cmpfloat(rel_error(d.lambda, 0.7500051655579887924), <=, 1e-14);
+  g_assert_cmpfloat(rel_error(d.d_r12[0], -0.054644048100303268155), <=, 1e-14);
+  g_assert_cmpfloat(rel_error(d.d_r12[1], -4.2600310580612198835e-156), <=, 1e-14);
+  g_assert_cmpfloat(rel_error(d.d_r12[2], 6.4651790537290090943e+85), <=, 1e-14);
+  g_assert_cmpfloat(rel_error(d.d_q1[0], -0.00099531714243819706488), <=, 1e-14);
+  g_assert_cmpfloat(rel_error(d.d_q1[2], 2.3552074799791896414e+84), <=, 1e-14);
+  g_assert_cmpfloat(rel_error(d.d_q1[5], -1.3932750771682702462e+171), <=, 1e-14);
+  g_assert_cmpfloat(rel_error(d.d_q2[0], -0.0029860336909090047223), <=, 1e-14);
+  g_assert_cmpfloat(rel_error(d.d_q2[5], -4.1799403865754587495e+171), <=, 1e-14);
+}
+
 /* Q1 nearly singular (smallest eigenvalue ~4e-18), r12 along its thin
  * direction, lambda ~3.5e-9: f' computed from a solve refined to ~2^-60 |s|
  * is too noisy for the Newton steps to settle (docs/derivatives.md, (E7)),
@@ -833,6 +858,7 @@ int main(int argc, char **argv) {
   g_test_add_func("/pw85_contact_derivatives/matrix_ratio", test_matrix_ratio);
   g_test_add_func("/pw85_contact_derivatives/thin-direction", test_thin_direction);
   g_test_add_func("/pw85_contact_derivatives/long-needle", test_long_needle);
+  g_test_add_func("/pw85_contact_derivatives/wide-scales", test_wide_scales);
   g_test_add_func("/pw85_contact_derivatives/bad-input", test_bad_input);
   g_test_add_func("/pw85_contact_derivatives/batch/forms", test_batch);
   g_test_add_func("/pw85_contact_derivatives/batch/lanes", test_batch_lanes);

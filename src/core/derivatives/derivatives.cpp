@@ -30,6 +30,7 @@
 #include "derivatives/derivatives.hpp"
 
 #include <cmath>
+#include <initializer_list>
 
 #include "common/scaling.hpp"
 #include "contact/contact.hpp"
@@ -119,51 +120,31 @@ Status contact_derivatives_from_default(Vec3 const &r, Sym3 const &q1, Sym3 cons
   return derivatives_dispatch(status, res, r, q1, q2, fields, d);
 }
 
-// Magnitudes far from 1: mu^2(2^e r, 2^2e Q1, 2^2e Q2) = mu^2(r, Q1, Q2), so
-// the pair is solved with the larger matrix scaled to [1, 4) by an exact
-// power of two, and the derivatives scaled back: g by 2^e, d_q and the
-// Hessian by 2^2e; mu2, lambda and the torques are invariant. An r still
-// far from 1 after that (a far or a very close pair) is scaled alone to
-// [0.5, 1) by 2^-t: mu^2 is homogeneous of degree 2 in r, so mu2, the
-// torques and d_q scale back by 2^2t, g by 2^t, the Hessian not at all,
-// lambda is invariant. Every field is then computed at moderate magnitudes
-// and is finite wherever its value is in the range of double.
-Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Derivatives &d,
-                           DerivativeFields fields) noexcept {
-  double const mq1 = cholesky_path::max_abs6(q1), mq2 = cholesky_path::max_abs6(q2);
-  double const mq = cholesky_path::max2(mq1, mq2);
-  double const mr = cholesky_path::max_abs3(r);
-  if (unscaled(mq, mr)) {
-    bool const in_range = mq1 > kSafeLo && mq1 < kSafeHi && mq2 > kSafeLo && mq2 < kSafeHi;
-    MethodResult res;
-    Status const status = solve_default(r, q1, q2, in_range, res);
-    return derivatives_dispatch(status, res, r, q1, q2, fields, d);
-  }
-  int ex;
-  std::frexp(mq, &ex);
-  int const e = -(ex / 2);
+namespace {
+
+// The derivatives of (r, Q1, Q2) from those of the pair scaled as
+// mu^2(2^e r, 2^2e Q1, 2^2e Q2) = mu^2(r, Q1, Q2): g scales back by 2^e, d_q
+// and the Hessian by 2^2e; mu2, lambda and the torques are invariant. An r
+// still far from 1 after that (a far or a very close pair) is scaled alone
+// to [0.5, 1) by 2^-t, unless scale_r is false: mu^2 is homogeneous of
+// degree 2 in r, so mu2, the torques and d_q scale back by 2^2t, g by 2^t,
+// the Hessian not at all, lambda is invariant. NaN fields and
+// kNoConvergence where a field leaves the range of double.
+Status scaled_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int e, bool scale_r,
+                          DerivativeFields fields, Derivatives &d) noexcept {
   Vec3 rs;
   Sym3 a, b;
   scale_pair(r, q1, q2, e, 2 * e, rs, a, b);
   int t = 0;
   double const mrs = cholesky_path::max_abs3(rs);
-  if (!(mrs > 0x1p-30 && mrs < 0x1p30)) {
+  if (scale_r && !(mrs > 0x1p-30 && mrs < 0x1p30)) {
     std::frexp(mrs, &t);
     scale_by_power_of_two(rs.x, kDim, -t);
   }
   Derivatives s;
   MethodResult res;
-  Status status =
+  Status const status =
       derivatives_dispatch(solve_default(rs, a, b, false, res), res, rs, a, b, fields, s);
-  if (status == kNoConvergence && t != 0) {
-    // Scaling r alone moves mu2 by 2^-2t; where the matrices' entries
-    // span a wide range (an ellipsoid far longer than r12), a field of that
-    // problem can leave the range of double although the pair's own fields
-    // are moderate: solve with r scaled with the matrices only.
-    scale_by_power_of_two(rs.x, kDim, t);
-    t = 0;
-    status = derivatives_dispatch(solve_default(rs, a, b, false, res), res, rs, a, b, fields, s);
-  }
   if (status != kOk && status != kInaccurate) {
     d = s;  // all NaN
     return status;
@@ -186,6 +167,41 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Deriva
     }
   }
   d = s;
+  return status;
+}
+
+}  // namespace
+
+// Magnitudes far from 1: the pair is solved scaled (scaled_derivatives),
+// first with the larger matrix entry scaled to [1, 4) and r to [0.5, 1).
+// Where the matrices' entries span a wide range (an ellipsoid far longer
+// than the other, or than r12), a field of the scaled problem can leave the
+// range of double although the pair's own fields are moderate: then r is
+// left with the matrices' scale, then the smallest diagonal entry is scaled
+// to [1, 4) instead, with and without r.
+Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Derivatives &d,
+                           DerivativeFields fields) noexcept {
+  double const mq1 = cholesky_path::max_abs6(q1), mq2 = cholesky_path::max_abs6(q2);
+  double const mq = cholesky_path::max2(mq1, mq2);
+  double const mr = cholesky_path::max_abs3(r);
+  if (unscaled(mq, mr)) {
+    bool const in_range = mq1 > kSafeLo && mq1 < kSafeHi && mq2 > kSafeLo && mq2 < kSafeHi;
+    MethodResult res;
+    Status const status = solve_default(r, q1, q2, in_range, res);
+    return derivatives_dispatch(status, res, r, q1, q2, fields, d);
+  }
+  double min_diagonal = HUGE_VAL;
+  for (Sym3 const *q : {&q1, &q2})
+    for (int k : {0, 3, 5}) min_diagonal = std::fmin(min_diagonal, std::fabs(q->a[k]));
+  int ex_max, ex_min;
+  std::frexp(mq, &ex_max);
+  std::frexp(min_diagonal, &ex_min);
+  int const exponents[2] = {-(ex_max / 2), -(ex_min / 2)};
+  Status status = kNoConvergence;
+  for (int k = 0; k < 4 && status == kNoConvergence; ++k) {
+    if (k >= 2 && exponents[1] == exponents[0]) break;
+    status = scaled_derivatives(r, q1, q2, exponents[k / 2], k % 2 == 0, fields, d);
+  }
   return status;
 }
 
