@@ -772,9 +772,12 @@ typedef struct pw85_derivatives_t {
  * PW85_ERR_INVALID_ARGUMENT (NULL, NaN, infinity, or r12 = 0 where mu^2 is
  * not differentiable), PW85_ERR_NOT_SPD (q1 or q2 not positive definite),
  * PW85_ERR_NO_CONVERGENCE (the solve did not converge; where DEFAULT
- * answers, only when a field is outside the range of double or the
- * maximiser has min(lambda, 1 - lambda) below about 1e-15, i.e. q1 and q2
- * of magnitudes about 2^100 or more apart; docs/derivatives.md) or
+ * answers, only when a field is outside the range of double, the maximiser
+ * has min(lambda, 1 - lambda) below about 1e-15, i.e. q1 and q2 of
+ * magnitudes about 2^100 or more apart, or f is nearly flat at its maximum,
+ * f(lambda -+ min(lambda, 1 - lambda) / 4) within 1e-6 of mu^2 relative,
+ * where lambda is not determined in double (matrix entries spanning about
+ * 2^100 or more); docs/derivatives.md) or
  * PW85_ERR_INACCURATE (every field written, but the error estimate of mu2
  * exceeds PW85_METHOD_DEFAULT's documented accuracy). On the other errors
  * every field of *d is NaN (when d is not NULL). The last bits may depend on
