@@ -103,9 +103,12 @@ inline Status derivatives_dispatch(Status status, MethodResult const &res, Vec3 
   return second;
 }
 
+// A largest |r12 component| that contact_derivatives takes as it is.
+inline bool moderate_r(double mr) noexcept { return mr > 0x1p-30 && mr < 0x1p30; }
+
 // Magnitudes that contact_derivatives takes as they are (no rescaling).
 inline bool unscaled(double mq, double mr) noexcept {
-  return mq > 0x1p-60 && mq < 0x1p60 && mr > 0x1p-30 && mr < 0x1p30;
+  return mq > 0x1p-60 && mq < 0x1p60 && moderate_r(mr);
 }
 
 }  // namespace
@@ -137,7 +140,7 @@ Status scaled_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int e, 
   scale_pair(r, q1, q2, e, 2 * e, rs, a, b);
   int t = 0;
   double const mrs = cholesky_path::max_abs3(rs);
-  if (scale_r && !(mrs > 0x1p-30 && mrs < 0x1p30)) {
+  if (scale_r && !moderate_r(mrs)) {
     std::frexp(mrs, &t);
     scale_by_power_of_two(rs.x, kDim, -t);
   }
@@ -199,8 +202,11 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Deriva
   int const exponents[2] = {-(ex_max / 2), -(ex_min / 2)};
   Status status = kNoConvergence;
   for (int k = 0; k < 4 && status == kNoConvergence; ++k) {
-    if (k >= 2 && exponents[1] == exponents[0]) break;
-    status = scaled_derivatives(r, q1, q2, exponents[k / 2], k % 2 == 0, fields, d);
+    int const e = exponents[k / 2];
+    bool const scale_r = k % 2 == 0;
+    if (k >= 2 && e == exponents[0]) break;                      // tried already
+    if (!scale_r && moderate_r(std::ldexp(mr, e))) continue;  // r was not scaled alone
+    status = scaled_derivatives(r, q1, q2, e, scale_r, fields, d);
   }
   return status;
 }
