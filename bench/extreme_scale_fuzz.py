@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """PW85_METHOD_DEFAULT on pairs of extreme scale against an exact reference.
 
-    /usr/bin/python3 bench/extreme_scale_fuzz.py build/src/libpw85.so [pairs] [seed] [csv]
+    /usr/bin/python3 bench/extreme_scale_fuzz.py [--small-angles] build/src/libpw85.so [pairs] [seed] [csv]
     /usr/bin/python3 bench/extreme_scale_fuzz.py --reference < pairs.txt
 
 Pairs (seeded): six semi-axes log-uniform in [1e-37, 1e37], random
@@ -11,6 +11,11 @@ semi-axes further apart than ~1e8 is not); the centre distance either log-unifor
 independently of the shapes (even pairs) or 10^U(-4, 4) times the sum of the
 support radii along r (odd pairs): from deep overlap to far apart. Each pair
 goes through pw85_contact_function_method with PW85_METHOD_DEFAULT (ctypes).
+--small-angles: each orientation a rotation by an angle log-uniform in
+[2^-60, 1] about a random axis instead, so that semi-axes far apart still
+give positive definite matrices, rotated by less than their rounding can
+resolve: matrices far more ill-conditioned than double precision (the
+numerically singular shapes of docs/stability.md).
 
 Reference, from the exact double inputs (no rounding anywhere): with
 Q(t) = (1 - t) Q1 + t Q2, f(t) = t (1 - t) N(t) / D(t), N = r^T adj(Q(t)) r
@@ -144,8 +149,12 @@ def exactly_spd(q):
     return a > 0 and a * d - b * b > 0 and a * (d * f - e * e) - b * (b * f - e * c) + c * (b * e - d * c) > 0
 
 
-def rotation(rng):
+def rotation(rng, small_angles=False):
     w, x, y, z = (rng.gauss(0, 1) for _ in range(4))
+    if small_angles:  # angle 2^-U(0, 60) about the axis (x, y, z)
+        half = 2.0 ** -rng.uniform(0, 60) / 2
+        n = math.sqrt(x * x + y * y + z * z)
+        w, x, y, z = math.cos(half), *(math.sin(half) * c / n for c in (x, y, z))
     n = math.sqrt(w * w + x * x + y * y + z * z)
     w, x, y, z = w / n, x / n, y / n, z / n
     return [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
@@ -163,9 +172,9 @@ def support(q, u):
     return math.sqrt(max(sum(u[i] * full[i][j] * u[j] for i in range(3) for j in range(3)), 0.0))
 
 
-def gen(rng, k):
-    q1 = quad_form([10 ** rng.uniform(-37, 37) for _ in range(3)], rotation(rng))
-    q2 = quad_form([10 ** rng.uniform(-37, 37) for _ in range(3)], rotation(rng))
+def gen(rng, k, small_angles):
+    q1 = quad_form([10 ** rng.uniform(-37, 37) for _ in range(3)], rotation(rng, small_angles))
+    q2 = quad_form([10 ** rng.uniform(-37, 37) for _ in range(3)], rotation(rng, small_angles))
     u = [rng.gauss(0, 1) for _ in range(3)]
     nu = math.sqrt(sum(x * x for x in u))
     u = [x / nu for x in u]
@@ -198,10 +207,12 @@ def main():
     if len(sys.argv) > 1 and sys.argv[1] == "--reference":
         print_reference(sys.stdin.readlines())
         return
-    lib = ctypes.CDLL(sys.argv[1] if len(sys.argv) > 1 else "build/src/libpw85.so")
-    n = int(sys.argv[2]) if len(sys.argv) > 2 else 6000
-    seed = int(sys.argv[3]) if len(sys.argv) > 3 else 1
-    out = open(sys.argv[4], "w") if len(sys.argv) > 4 else None
+    small_angles = "--small-angles" in sys.argv
+    argv = [a for a in sys.argv if a != "--small-angles"]
+    lib = ctypes.CDLL(argv[1] if len(argv) > 1 else "build/src/libpw85.so")
+    n = int(argv[2]) if len(argv) > 2 else 6000
+    seed = int(argv[3]) if len(argv) > 3 else 1
+    out = open(argv[4], "w") if len(argv) > 4 else None
     d3, d6 = ctypes.c_double * 3, ctypes.c_double * 6
     f = lib.pw85_contact_function_method
     f.argtypes = [d3, d6, d6, ctypes.c_int, ctypes.POINTER(Result)]
@@ -211,7 +222,7 @@ def main():
         out.write("r12,q1,q2,status,mu2,lambda,mu2_error,iterations,reference,rel_error\n")
     for k in range(n):
         while True:
-            r, q1, q2 = gen(rng, k)
+            r, q1, q2 = gen(rng, k, small_angles)
             res = Result()
             s = f(d3(*r), d6(*q1), d6(*q2), 0, ctypes.byref(res))
             if s != -2 and exactly_spd(q1) and exactly_spd(q2):  # -2: PW85_ERR_NOT_SPD
@@ -236,7 +247,7 @@ def main():
                 " ".join(x.hex() for x in r), " ".join(x.hex() for x in q1),
                 " ".join(x.hex() for x in q2), s, res.mu2, res.lambda_, res.mu2_error,
                 res.iterations, ref, err))
-    print("%d pairs (seed %d); statuses: %s" % (n, seed, ", ".join(
+    print("%d pairs (seed %d%s); statuses: %s" % (n, seed, ", small angles" * small_angles, ", ".join(
         "%s %d" % (NAMES.get(s, str(s)), c) for s, c in sorted(counts.items(), reverse=True))))
     print("silent (OK, error > %g or > 10 x estimate): %d; largest OK error %.3e; "
           "reference bracket width %.1e" % (ACCURACY, silent, worst, width))
