@@ -393,8 +393,8 @@ PW85_API int pw85_dca_ex(double const u[PW85_DIM], double const q1[PW85_SYM],
  * last bits may differ from another CPU's (top of this header). Documented
  * relative accuracy of mu2: 1e-14. Known exception, not fixed: where q1 or
  * q2 is numerically singular in double (semi-axes about 2^46 or more
- * apart, rotated off the coordinate axes), PW85_OK can come with a wrong
- * mu2 (docs/stability.md). */
+ * apart, rotated off the coordinate axes), PW85_OK can rarely come with a
+ * larger error (1.7e-10 measured; docs/stability.md). */
 #define PW85_METHOD_DEFAULT 0
 /* pw85 1.0's algorithm, what pw85_contact_function() computes (Brent, then
  * Newton on the residual, mu2 by a compensated form). Documented relative

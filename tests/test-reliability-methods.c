@@ -79,7 +79,11 @@ static const Pair extreme[] = {
  * returned PW85_OK with relative errors 1.1e-9, 2.5e-9, 1.3e-8, 5.4e-13
  * and 7.5e-11 (bench/extreme_scale_fuzz.py): the maximiser is within
  * 1e-11 ... 1e-45 of 0 or 1, where f varies on the scale of lambda or of
- * 1 - lambda. mu2: the exact maximum of f, rounded to double, from
+ * 1 - lambda. The last three: a matrix numerically singular in double
+ * (extreme_scale_fuzz.py --small-angles, and a sweep of the derivatives),
+ * where the double f'' of step 3 of DEFAULT was rounding noise far above
+ * the bound of (M3): PW85_OK with errors 0.5, 0.58 and 0.48. mu2: the
+ * exact maximum of f, rounded to double, from
  * `bench/extreme_scale_fuzz.py --reference` (rational arithmetic on the
  * double inputs, bracket of relative width below 1e-130; mpmath at 2000
  * bits agrees to the last bit). */
@@ -117,6 +121,24 @@ static const struct {
       {0x1.bd864b36abab7p-13, 0x1.b0d4597ee28f6p-12, 0x1.38d1ad8440c93p-14,
        0x1.a47f02f888d4fp-11, 0x1.2fe7c60319058p-13, 0x1.b74887f689281p-16}},
      0x1.e2cbcf8b8d2acp+32},
+    {{{0x1.437ba4b52d82p-1, -0x1.f9cfaa68d13bp-3, -0x1.3274fe1b84e3p-4},
+      {0x1.421a85dffc0c6p-141, -0x1.8da30e537e4dcp-164, 0x1.bc5b6dbcae021p-176,
+       0x1.71a88d5a52621p-142, -0x1.15dc98b5e79ap-198, 0x1.1bdcc3e2d4acap-152},
+      {0x1.f32f77e0088f5p+110, 0x1.6d3ae55324cd2p+131, 0x1.bdf610f636de7p+52,
+       0x1.0b38a9c954faap+152, 0x1.4649d78307dbdp+73, 0x1.8e696f1af08f5p-6}},
+     0x1.53bd40b8d14efp+51},
+    {{{-0x1.c0e4eb1ee9451p-52, -0x1.14c19ee45328bp-53, 0x1.9cbec7757e721p-50},
+      {0x1.f1d0203f80df7p-137, -0x1.d04ccd652798bp-139, -0x1.42bf5c5a36d1bp-122,
+       0x1.b10b0e657fe54p-141, 0x1.2d051ef0aeb11p-124, 0x1.a27e8aa9b5204p-108},
+      {0x1.583e2f33fcb02p+146, -0x1.0bc41e55e4f1fp+116, -0x1.118b6aa907364p+87,
+       0x1.259aa30bb7b34p+176, -0x1.496ee0637c4aep+115, 0x1.71a26c3e31c53p+54}},
+     0x1.457839adec292p-96},
+    {{{-0x1.3d8f72a459a3cp+120, -0x1.bd8d4b67c7522p+121, 0x1.6a72ff5bde0d0p+118},
+      {0x1.147ba17d19eb8p-100, -0x1.8d67c8f10ade8p-62, -0x1.716ad331a5240p-95,
+       0x1.1d9b74ae6f032p-23, 0x1.097e24c5ec95dp-56, 0x1.ed9c7528e1335p-90},
+      {0x1.fee9392ac6841p+130, -0x1.f2e3d109e8a12p+103, 0x1.0298e640e5d12p+151,
+       0x1.2cce3e4937e6cp+102, -0x1.37d7a826a8944p+149, 0x1.4348bc9eabc25p+196}},
+     0x1.94ace96acd03ap+194},
 };
 
 /* What a status that writes an estimate promises (include/pw85.h). */

@@ -381,6 +381,12 @@ PW85_ALWAYS_INLINE Status default_body(Vec3 const &r, Sym3 const &q1, Sym3 const
     for (int k = 0; k < kDDMaxNewton; ++k) {
       ++res.iterations;
       if (!f_eval_dd(lambda, r, q1, q2, fd)) break;
+      // A slope beyond the bound of (M3), -f'' <= 2 f / min(lambda,
+      // 1 - lambda)^2 (times 2 for rounding), is not the curvature but the
+      // rounding of a Q(lambda) numerically singular in double, which the
+      // first-order rel_double does not see: step 4 instead.
+      double const m = std::fmin(lambda, 1.0 - lambda);
+      if (!(a * m * m <= 4.0 * fd.f)) break;
       double const gap = fd.df * fd.df / (2.0 * a);
       if (gap <= kDDGapTol * fd.f) {
         res.mu2 = fd.f;
