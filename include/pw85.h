@@ -780,7 +780,9 @@ typedef struct pw85_derivatives_t {
  * magnitudes about 2^100 or more apart, or f is nearly flat at its maximum,
  * f(lambda -+ min(lambda, 1 - lambda) / 4) within 1e-6 of mu^2 relative,
  * where lambda is not determined in double (matrix entries spanning about
- * 2^100 or more); docs/derivatives.md) or
+ * 2^100 or more), or q1 or q2 numerically singular in double (det q below
+ * 2^-50 times the product of its diagonal entries: semi-axes about 2^25 or
+ * more apart, rotated off the coordinate axes); docs/derivatives.md) or
  * PW85_ERR_INACCURATE (every field written, but the error estimate of mu2
  * exceeds PW85_METHOD_DEFAULT's documented accuracy). On the other errors
  * every field of *d is NaN (when d is not NULL). The last bits may depend on
