@@ -135,15 +135,15 @@ namespace {
 // kNoConvergence where a field leaves the range of double.
 Status scaled_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, int e, bool scale_r,
                           DerivativeFields fields, Derivatives &d) noexcept {
+  // t from the exponent of max |r| (frexp: in [2^(er - 1), 2^er)), so that
+  // r is scaled once, by 2^(e - t), with no intermediate overflow.
+  int er;
+  double const mr = cholesky_path::max_abs3(r);
+  std::frexp(mr, &er);
+  int const t = scale_r && !moderate_r(std::ldexp(mr, e)) ? er + e : 0;
   Vec3 rs;
   Sym3 a, b;
-  scale_pair(r, q1, q2, e, 2 * e, rs, a, b);
-  int t = 0;
-  double const mrs = cholesky_path::max_abs3(rs);
-  if (scale_r && !moderate_r(mrs)) {
-    std::frexp(mrs, &t);
-    scale_by_power_of_two(rs.x, kDim, -t);
-  }
+  scale_pair(r, q1, q2, e - t, 2 * e, rs, a, b);
   Derivatives s;
   MethodResult res;
   Status const status =
@@ -206,6 +206,10 @@ Status contact_derivatives(Vec3 const &r, Sym3 const &q1, Sym3 const &q2, Deriva
     bool const scale_r = k % 2 == 0;
     if (k >= 2 && e == exponents[0]) break;                      // tried already
     if (!scale_r && moderate_r(std::ldexp(mr, e))) continue;  // r was not scaled alone
+    // The smallest diagonal entry's scale can push the largest entry, or
+    // r12 left unscaled, out of the range of double: not tried there.
+    if (!(std::ldexp(mq, 2 * e) < 0x1p1000 && (scale_r || std::ldexp(mr, e) < 0x1p1000)))
+      continue;
     status = scaled_derivatives(r, q1, q2, e, scale_r, fields, d);
   }
   return status;
