@@ -146,8 +146,8 @@ inline bool spheres_apart(double const r[3], double reach) noexcept {
 // underflow error, 16 (|n|_1 + 1) 2^-1074 (each of the 12 products loses
 // at most 2^-1075 when it underflows; those of a_i are multiplied by |n_i|),
 // taken as (|n|_1 + 1) 2^-1018 so that no subnormal is computed: x86 takes a
-// microcode assist for each subnormal result, which slows the query by a
-// third (build/bench/bench_scene --n 1000000).
+// microcode assist for each subnormal result, on every plane test here
+// (build/bench/bench_scene --n 1000000 measures the query).
 // The bound is >= 0 unless a product overflows (inf - inf: NaN). It is not
 // clamped: the square root is then NaN and the plane test (S1) below
 // declines, as it must (a bound clamped to 0 would let it separate
