@@ -28,6 +28,7 @@
 
 #include "common/fp.hpp"
 #include "common/lanes.hpp"
+#include "common/magnitude.hpp"
 #include "common/orientation.hpp"
 #include "common/screen.hpp"
 #include "common/sym3.hpp"
@@ -857,7 +858,7 @@ Status scene_pairs(Scene const &scene, double s, int nthreads, long long capacit
       } else if (g > r2) {
         r2 = g;
       }
-      for (int t = 0; t < 6; ++t) qmax = std::fmax(qmax, std::fabs(qi[t]));
+      qmax = std::max(qmax, max_abs(qi, kSym));
     }
     if (!(s2 * qmax <= kMaxDouble)) return kInvalidArgument;
     if (n == 1) r2 = r1;
